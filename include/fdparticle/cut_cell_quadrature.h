@@ -1,0 +1,73 @@
+#ifndef fdparticle_cut_cell_quadrature_h
+#define fdparticle_cut_cell_quadrature_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/grid/tria.h>
+
+#include <fdparticle/particle_set.h>
+
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /// What the particles do to one cell.
+  enum class CellKind
+  {
+    fluid,  ///< no particle meets the cell
+    inside, ///< the cell lies inside one particle
+    cut     ///< a particle surface crosses the cell
+  };
+
+  /**
+   * Where the integrals over the balls P_k are evaluated (formulation.md "Integration over
+   * particles"). A cell away from every particle gets the ordinary 3-point Gauss rule,
+   * exact for the Q2 integrands on affine cells. A cut cell gets the seed's n-point Gauss
+   * rule, and every point belongs to the particle that contains it or to the fluid
+   * (χ_P tested point by point). This is the one place that decides which point lies in
+   * which particle; other cut-cell rules (level set) are added here.
+   */
+  template <int dim>
+  class CutCellQuadrature
+  {
+  public:
+    /// The rule on one cell and, for each point, the particle owning it (−1: fluid).
+    struct CellRule
+    {
+      CellKind                kind = CellKind::fluid;
+      const Quadrature<dim> * quadrature = nullptr;
+      std::vector<int>        owner;
+    };
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+
+    const Quadrature<dim> &regular_rule() const { return regular; }
+    const Quadrature<dim> &cut_rule() const { return cut; }
+    unsigned int           cut_points_per_direction() const { return n_cut_points; }
+
+    /// Which particles meet the cell: fluid, inside or cut (by the cell's vertices and box).
+    CellKind classify(const typename Triangulation<dim>::cell_iterator &cell,
+                      const ParticleSet<dim> &particles, int &particle) const;
+
+    /**
+     * Fill rule for the cell; quadrature_points_real are the rule's points mapped to the
+     * cell, computed by the caller's FEValues (an affine map is not assumed here).
+     */
+    void reinit(const typename Triangulation<dim>::cell_iterator &cell,
+                const ParticleSet<dim> &particles, CellRule &rule) const;
+
+    /// Set the owners once the real-space points of rule are known.
+    void assign_owners(const std::vector<Point<dim>> &points,
+                       const ParticleSet<dim> &particles, CellRule &rule) const;
+
+  private:
+    unsigned int   n_cut_points = 7;
+    QGauss<dim>    regular{3};
+    QGauss<dim>    cut{7};
+  };
+} // namespace fdparticle
+
+#endif

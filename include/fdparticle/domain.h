@@ -1,0 +1,69 @@
+#ifndef fdparticle_domain_h
+#define fdparticle_domain_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/lac/affine_constraints.h>
+
+#include <array>
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * The box Ω: its corners and base mesh (subsection Geometry) and what happens on its
+   * faces (subsection Boundary conditions): each direction is periodic or bounded by two
+   * no-slip walls, which may slide with a given velocity. Faces carry boundary ids
+   * 0..2dim-1 in the order x-, x+, y-, y+, z-, z+.
+   */
+  template <int dim>
+  class Domain
+  {
+  public:
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+
+    /// Build the (refined) base mesh and register periodic face pairs with p4est.
+    void create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const;
+
+    /// Periodicity constraints on all components given in mask.
+    void make_periodicity_constraints(const DoFHandler<dim> &    dof_handler,
+                                      AffineConstraints<double> &constraints) const;
+
+    /**
+     * Wall conditions: the components in velocity_mask take each wall's velocity
+     * (homogeneous = true: zero, for Newton updates), the components in zero_mask are
+     * zero on every wall. Walls at rest are applied first, so at an edge shared by a
+     * resting and a sliding wall the fluid is at rest ("watertight" lid).
+     */
+    void make_wall_constraints(const DoFHandler<dim> &    dof_handler,
+                               const ComponentMask &      velocity_mask,
+                               const ComponentMask &      zero_mask,
+                               const bool                 homogeneous,
+                               AffineConstraints<double> &constraints) const;
+
+    bool                 is_periodic(const unsigned int direction) const;
+    bool                 is_wall(const types::boundary_id face) const;
+    Tensor<1, dim>       wall_velocity(const types::boundary_id face) const;
+    const Point<dim> &   lower_corner() const { return lower; }
+    const Point<dim> &   upper_corner() const { return upper; }
+    double               volume() const;
+    /// The smallest base-mesh cell edge after the global refinements.
+    double               base_cell_size() const;
+    static std::string   face_name(const types::boundary_id face);
+
+  private:
+    Point<dim>                             lower, upper;
+    std::vector<unsigned int>              subdivisions;
+    unsigned int                           global_refinements = 0;
+    std::array<bool, dim>                  periodic{};
+    std::array<Tensor<1, dim>, 2 * dim>    wall_velocities{};
+  };
+} // namespace fdparticle
+
+#endif

@@ -1,0 +1,106 @@
+#ifndef fdparticle_particle_set_h
+#define fdparticle_particle_set_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <fdparticle/domain.h>
+#include <fdparticle/rigid_body.h>
+#include <fdparticle/time_stepper.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /// How a particle moves: by its force and torque balance, or not at all.
+  enum class ParticleMotion
+  {
+    free,
+    fixed
+  };
+
+  /// Closure for the angular velocity (formulation.md "Where this departs from the seed").
+  enum class AngularVelocityClosure
+  {
+    torque_balance, ///< eq. 5: (ρ_k − ρ_f) J dω/dt + <λ, θ × r> = 0 (default)
+    kinematic       ///< seed 3.14d: |P| ω = ½ ∫_P ∇ × u
+  };
+
+  /// One rigid sphere (3D) or disk (2D) and its time history.
+  template <int dim>
+  struct Particle
+  {
+    unsigned int   id = 0;
+    ParticleMotion motion = ParticleMotion::free;
+    double         radius = 0, density = 0;
+
+    /// X^n and X^{n−1}; geometry_center is where the ball sits during the current step.
+    Point<dim> position, position_old, geometry_center;
+    /// V and ω: current iterate (t^{n+1} during a step) and the two previous levels.
+    Tensor<1, dim> velocity, velocity_old, velocity_old2;
+    Tensor<1, 3>   omega, omega_old, omega_old2;
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+
+    /// Hydrodynamic force (buoyancy included) and torque of the last step.
+    Tensor<1, dim> force;
+    Tensor<1, 3>   torque;
+
+    /// Offset of (V, ω) in the particle block; numbers::invalid_unsigned_int if not free.
+    unsigned int first_unknown = numbers::invalid_unsigned_int;
+
+    double volume() const { return RigidBody<dim>::volume(radius); }
+    double inertia() const { return RigidBody<dim>::inertia(radius); }
+    bool   contains(const Point<dim> &x) const
+    {
+      return (x - geometry_center).norm_square() < radius * radius;
+    }
+  };
+
+  /**
+   * The particles of a scene (subsection Particles): parsing and validation of the list,
+   * their unknowns' numbering in the particle block, and the kinematics advanced after
+   * each step (formulation.md eq. 6, with the BDF formula of the scheme for X).
+   */
+  template <int dim>
+  class ParticleSet
+  {
+  public:
+    static void declare_parameters(ParameterHandler &prm);
+    /// Reads the list and checks it against the box: inside, off the walls, no overlaps.
+    void        parse_parameters(ParameterHandler &prm, const Domain<dim> &domain);
+
+    unsigned int              size() const { return particles.size(); }
+    bool                      empty() const { return particles.empty(); }
+    Particle<dim> &           operator[](const unsigned int k) { return particles[k]; }
+    const Particle<dim> &     operator[](const unsigned int k) const { return particles[k]; }
+    AngularVelocityClosure    closure() const { return angular_closure; }
+
+    /// Size of the particle block: dim + n_rotations per free particle.
+    unsigned int n_unknowns() const { return n_block_unknowns; }
+
+    /// Index of the particle containing x during this step, or -1 (fluid).
+    int locate(const Point<dim> &x) const;
+
+    /// Put each ball at its (extrapolated) position for the coming step.
+    void prepare_step(const TimeStepper &time);
+    /// Copy the particle block into (V, ω) of the free particles, and back.
+    void set_unknowns(const Eigen::VectorXd &y);
+    Eigen::VectorXd get_unknowns() const;
+    /// Accept the step: move the balls with the BDF formula, rotate, shift the history.
+    void finish_step(const TimeStepper &time);
+
+  private:
+    std::vector<Particle<dim>> particles;
+    AngularVelocityClosure     angular_closure = AngularVelocityClosure::torque_balance;
+    unsigned int               n_block_unknowns = 0;
+  };
+} // namespace fdparticle
+
+#endif

@@ -1,0 +1,93 @@
+#ifndef fdparticle_simulation_h
+#define fdparticle_simulation_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <fdparticle/bordered_system.h>
+#include <fdparticle/cut_cell_quadrature.h>
+#include <fdparticle/domain.h>
+#include <fdparticle/fluid.h>
+#include <fdparticle/navier_stokes_assembler.h>
+#include <fdparticle/output_writer.h>
+#include <fdparticle/particle_set.h>
+#include <fdparticle/time_stepper.h>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /// Declare every parameter of the program (all dimensions share one declaration).
+  void declare_all_parameters(ParameterHandler &prm);
+
+  /**
+   * One run of a scene: the mesh and the (u, λ, p) finite element, the constraints that
+   * change with the particles, the time loop and, inside each step, Newton's method on
+   * the bordered system (formulation.md). Stokes scenes take a single linear solve a step.
+   */
+  template <int dim>
+  class Simulation
+  {
+  public:
+    /// Reads and checks every parameter; throws a one-sentence error on bad input.
+    Simulation(ParameterHandler &prm, const MPI_Comm comm);
+    void run();
+
+    /// The result of the last step, for tests that drive a simulation directly.
+    const ParticleSet<dim> &get_particles() const { return particles; }
+
+  private:
+    void   setup_dofs();
+    void   make_constraints();
+    void   set_initial_pressure();
+    void   solve_time_step(StepStatistics &stats);
+    void   update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals);
+    double max_velocity() const;
+    double hydrostatic_deviation() const;
+    void   write_output(const bool fields);
+
+    MPI_Comm            comm;
+    ConditionalOStream  pcout;
+    TimerOutput         timer;
+    ParameterHandler &  prm;
+
+    Domain<dim>            domain;
+    Fluid<dim>             fluid;
+    ParticleSet<dim>       particles;
+    TimeStepper            time;
+    CutCellQuadrature<dim> quadrature;
+    OutputWriter<dim>      output;
+    BorderedSystem         system;
+
+    double       nonlinear_tolerance = 1e-10;
+    unsigned int max_nonlinear_iterations = 20;
+    bool         line_search = true;
+    bool         hydrostatic_start = false;
+
+    parallel::distributed::Triangulation<dim> triangulation;
+    FESystem<dim>                             fe;
+    DoFHandler<dim>                           dof_handler;
+    NavierStokesAssembler<dim>                assembler;
+
+    IndexSet                  owned_dofs, relevant_dofs, velocity_dofs, multiplier_dofs;
+    AffineConstraints<double> static_constraints;  ///< hanging nodes + periodicity
+    AffineConstraints<double> update_constraints;  ///< homogeneous: Newton corrections
+    AffineConstraints<double> state_constraints;   ///< wall velocities: the solution itself
+    types::global_dof_index   pressure_reference_dof = 0;
+    Point<dim>                pressure_reference_point;
+
+    TrilinosWrappers::MPI::Vector solution, old_solution, old_old_solution;
+    TrilinosWrappers::MPI::Vector solution_ghost, history_ghost;
+    std::vector<ParticleIntegrals<dim>> last_integrals;
+    double                              wall_start = 0;
+  };
+} // namespace fdparticle
+
+#endif

@@ -1,0 +1,82 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <fdparticle/parameter_tools.h>
+#include <fdparticle/simulation.h>
+
+#include <fstream>
+#include <iostream>
+
+namespace
+{
+  void print_usage(std::ostream &out)
+  {
+    out << "Usage: fdparticle [--help] [--print-parameters] FILE.prm\n"
+           "  Simulates incompressible flow with freely moving rigid particles by the\n"
+           "  fictitious-domain / distributed-Lagrange-multiplier method.\n"
+           "  FILE.prm            the scene (deal.II parameter file); see prm/ for examples\n"
+           "  --print-parameters  print every parameter with its default and documentation\n"
+           "  --help              print this text\n"
+           "  Run in parallel with: mpirun -np N fdparticle FILE.prm\n";
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  using namespace dealii;
+  using namespace fdparticle;
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm                   comm = MPI_COMM_WORLD;
+  const bool                       root = Utilities::MPI::this_mpi_process(comm) == 0;
+
+  try
+    {
+      ParameterHandler prm;
+      declare_all_parameters(prm);
+
+      std::string file;
+      for (int i = 1; i < argc; ++i)
+        {
+          const std::string arg = argv[i];
+          if (arg == "--help" || arg == "-h")
+            {
+              if (root)
+                print_usage(std::cout);
+              return 0;
+            }
+          if (arg == "--print-parameters")
+            {
+              if (root)
+                prm.print_parameters(std::cout, ParameterHandler::PRM);
+              return 0;
+            }
+          AssertThrow(arg.empty() || arg[0] != '-',
+                      ExcMessage("Unknown option '" + arg + "'; see fdparticle --help."));
+          AssertThrow(file.empty(), ExcMessage("Give exactly one parameter file; see --help."));
+          file = arg;
+        }
+      AssertThrow(!file.empty(), ExcMessage("No parameter file given; see fdparticle --help."));
+      AssertThrow(std::ifstream(file).good(),
+                  ExcMessage("Cannot read parameter file '" + file + "'."));
+      prm.parse_input(file, "", false, false);
+
+      const int dim = prm.get_integer("Dimension");
+      if (dim == 2)
+        Simulation<2>(prm, comm).run();
+      else
+        Simulation<3>(prm, comm).run();
+    }
+  catch (std::exception &exc)
+    {
+      if (root)
+        std::cerr << "fdparticle: error: " << ParameterTools::one_line_message(exc) << std::endl;
+      return 1;
+    }
+  catch (...)
+    {
+      if (root)
+        std::cerr << "fdparticle: error: unknown exception" << std::endl;
+      return 1;
+    }
+  return 0;
+}

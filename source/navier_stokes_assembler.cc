@@ -1,0 +1,440 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <fdparticle/navier_stokes_assembler.h>
+#include <fdparticle/parameter_tools.h>
+#include <fdparticle/rigid_body.h>
+
+namespace fdparticle
+{
+  namespace
+  {
+    /// Which field a shape function of the (u, λ, p) system belongs to.
+    enum Field
+    {
+      velocity = 0,
+      multiplier = 1,
+      pressure = 2
+    };
+  } // namespace
+
+  template <int dim>
+  void NavierStokesAssembler<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Multiplier");
+    {
+      prm.declare_entry("Fluid penalty", "1", Patterns::Anything(),
+                        "s >= 0 in the term s*alpha*int(lambda.eta) over the fluid part of cut "
+                        "cells (the seed's weak lambda = 0 in the fluid, 3.18a). It keeps the "
+                        "rows of multipliers that barely meet a particle well posed.");
+    }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void NavierStokesAssembler<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Multiplier");
+    fluid_penalty = ParameterTools::to_double(prm.get("Fluid penalty"), "Multiplier/Fluid penalty");
+    AssertThrow(fluid_penalty >= 0,
+                ExcMessage("Parameter 'Multiplier/Fluid penalty' must not be negative."));
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  NavierStokesAssembler<dim>::NavierStokesAssembler(const FESystem<dim> &         fe,
+                                                    const Fluid<dim> &            fluid,
+                                                    const ParticleSet<dim> &      particles,
+                                                    const CutCellQuadrature<dim> &quadrature)
+    : fe(fe)
+    , fluid(fluid)
+    , particles(particles)
+    , quadrature(quadrature)
+  {}
+
+  template <int dim>
+  std::vector<ParticleIntegrals<dim>> NavierStokesAssembler<dim>::assemble(
+    const DoFHandler<dim> &dof_handler, const TrilinosWrappers::MPI::Vector &solution,
+    const TrilinosWrappers::MPI::Vector &history, const std::array<double, 3> &c,
+    const AffineConstraints<double> &constraints, const bool with_matrix,
+    BorderedSystem &system) const
+  {
+    using RB = RigidBody<dim>;
+    const FEValuesExtractors::Vector vel(0), lam(dim);
+    const FEValuesExtractors::Scalar pres(2 * dim);
+    const UpdateFlags flags =
+      update_values | update_gradients | update_quadrature_points | update_JxW_values;
+    FEValues<dim> fe_regular(mapping, fe, quadrature.regular_rule(), flags);
+    FEValues<dim> fe_cut(mapping, fe, quadrature.cut_rule(), flags);
+
+    // Every shape function is primitive: one field, one vector component.
+    const unsigned int        n = fe.n_dofs_per_cell();
+    std::vector<unsigned int> comp(n);
+    std::vector<unsigned int> dofs[3];
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const unsigned int c_i = fe.system_to_component_index(i).first;
+        comp[i] = c_i % dim;
+        dofs[c_i < dim ? velocity : (c_i < 2 * dim ? multiplier : pressure)].push_back(i);
+      }
+    const auto &u_dofs = dofs[velocity];
+    const auto &l_dofs = dofs[multiplier];
+    const auto &p_dofs = dofs[pressure];
+
+    const double         rho = fluid.density, mu = fluid.viscosity;
+    const double         alpha = rho * c[0];
+    const Tensor<1, dim> static_force = fluid.hydrostatic_gradient(); // ρ g + f
+    const unsigned int   n_rot = RB::n_rotations;
+
+    system.zero(with_matrix);
+    std::vector<ParticleIntegrals<dim>> integrals(particles.size());
+
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    // Border vectors of each particle met in the cell: [particle][unknown] → local vector.
+    std::vector<std::vector<Vector<double>>> local_B(particles.size()), local_C(particles.size());
+    std::vector<int>                         touching;
+    std::vector<double>                      N(n);
+    std::vector<Tensor<1, dim>>              dN(n);
+
+    typename CutCellQuadrature<dim>::CellRule rule;
+    std::vector<Tensor<1, dim>>               u, uh, l;
+    std::vector<Tensor<2, dim>>               gu, gl;
+    std::vector<double>                       p;
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        quadrature.reinit(cell, particles, rule);
+        FEValues<dim> &fv = (rule.kind == CellKind::cut ? fe_cut : fe_regular);
+        fv.reinit(cell);
+        quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
+        const unsigned int nq = fv.n_quadrature_points;
+        u.resize(nq), uh.resize(nq), l.resize(nq), gu.resize(nq), gl.resize(nq), p.resize(nq);
+        fv[vel].get_function_values(solution, u);
+        fv[vel].get_function_gradients(solution, gu);
+        fv[vel].get_function_values(history, uh);
+        fv[pres].get_function_values(solution, p);
+        const bool has_particle =
+          std::any_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; });
+        const bool penalise = (rule.kind == CellKind::cut && fluid_penalty > 0);
+        if (has_particle || penalise)
+          {
+            fv[lam].get_function_values(solution, l);
+            fv[lam].get_function_gradients(solution, gl);
+          }
+
+        cell_rhs = 0;
+        if (with_matrix)
+          cell_matrix = 0;
+        touching.clear();
+        for (const int k : rule.owner)
+          if (k >= 0 && std::find(touching.begin(), touching.end(), k) == touching.end())
+            {
+              touching.push_back(k);
+              if (with_matrix && particles[k].first_unknown != numbers::invalid_unsigned_int)
+                {
+                  local_B[k].assign(RB::n_unknowns, Vector<double>(n));
+                  local_C[k].assign(RB::n_unknowns, Vector<double>(n));
+                }
+            }
+
+        for (unsigned int q = 0; q < nq; ++q)
+          {
+            const double JxW = fv.JxW(q);
+            const int    k = rule.owner[q];
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                N[i] = fv.shape_value(i, q);
+                dN[i] = fv.shape_grad(i, q);
+              }
+
+            // 1.–2. Fluid momentum and continuity on the whole box.
+            const Tensor<1, dim> convection =
+              (fluid.convection ? gu[q] * u[q] : Tensor<1, dim>());
+            const Tensor<1, dim> m_force = rho * (c[0] * u[q] + uh[q] + convection) - static_force;
+            const Tensor<2, dim> two_mu_eps = mu * (gu[q] + transpose(gu[q]));
+            const double         div_u = trace(gu[q]);
+            for (const unsigned int i : u_dofs)
+              cell_rhs(i) += (m_force[comp[i]] * N[i] + two_mu_eps[comp[i]] * dN[i] -
+                              p[q] * dN[i][comp[i]]) *
+                             JxW;
+            for (const unsigned int i : p_dofs)
+              cell_rhs(i) -= N[i] * div_u * JxW;
+            if (with_matrix)
+              for (const unsigned int i : u_dofs)
+                {
+                  const unsigned int ci = comp[i];
+                  for (const unsigned int j : u_dofs)
+                    {
+                      const unsigned int cj = comp[j];
+                      // 2μ ε(φ_j):ε(φ_i) = μ (δ ∇N_i·∇N_j + ∂_cj N_i ∂_ci N_j)
+                      double value = mu * dN[i][cj] * dN[j][ci];
+                      if (ci == cj)
+                        value += rho * c[0] * N[i] * N[j] + mu * (dN[i] * dN[j]) +
+                                 (fluid.convection ? rho * N[i] * (dN[j] * u[q]) : 0.0);
+                      if (fluid.convection)
+                        value += rho * N[i] * gu[q][ci][cj] * N[j];
+                      cell_matrix(i, j) += value * JxW;
+                    }
+                  for (const unsigned int j : p_dofs)
+                    {
+                      const double b = -N[j] * dN[i][ci] * JxW;
+                      cell_matrix(i, j) += b;
+                      cell_matrix(j, i) += b;
+                    }
+                }
+
+            if (k >= 0)
+              {
+                // 3. Rigidity in P_k, and the −<λ, v> term of the momentum equation.
+                const Particle<dim> &P = particles[k];
+                const Tensor<1, dim> r = fv.quadrature_point(q) - P.geometry_center;
+                const Tensor<1, dim> du = u[q] - P.velocity - RB::cross(P.omega, r);
+                const Tensor<2, dim> dgu = gu[q] - RB::rotation_gradient(P.omega);
+                for (const unsigned int i : u_dofs)
+                  cell_rhs(i) -= (alpha * l[q][comp[i]] * N[i] + mu * (gl[q][comp[i]] * dN[i])) * JxW;
+                for (const unsigned int a : l_dofs)
+                  cell_rhs(a) += (alpha * du[comp[a]] * N[a] + mu * (dgu[comp[a]] * dN[a])) * JxW;
+
+                ParticleIntegrals<dim> &I = integrals[k];
+                I.lambda_force += alpha * l[q] * JxW;
+                for (unsigned int j = 0; j < 3; ++j)
+                  {
+                    Tensor<1, 3> e;
+                    e[j] = 1;
+                    I.lambda_torque[j] += (alpha * (l[q] * RB::cross(e, r)) +
+                                           mu * scalar_product(gl[q], RB::rotation_gradient(e))) *
+                                          JxW;
+                  }
+                I.curl_u += RB::curl(gu[q]) * JxW;
+                I.volume += JxW;
+
+                if (with_matrix)
+                  {
+                    for (const unsigned int a : l_dofs)
+                      for (const unsigned int b : u_dofs)
+                        if (comp[a] == comp[b])
+                          {
+                            const double m = (alpha * N[a] * N[b] + mu * (dN[a] * dN[b])) * JxW;
+                            cell_matrix(a, b) += m;
+                            cell_matrix(b, a) -= m;
+                          }
+                    if (P.first_unknown != numbers::invalid_unsigned_int)
+                      {
+                        // Border: ∂(rigidity)/∂(V, ω) and ∂(particle rows)/∂(λ or u).
+                        for (const unsigned int a : l_dofs)
+                          {
+                            const unsigned int ca = comp[a];
+                            local_B[k][ca](a) -= alpha * N[a] * JxW;
+                            local_C[k][ca](a) += alpha * N[a] * JxW;
+                            for (unsigned int j = 0; j < n_rot; ++j)
+                              {
+                                const Tensor<1, 3>   e = RB::rotation_axis(j);
+                                const double pairing =
+                                  (alpha * N[a] * RB::cross(e, r)[ca] +
+                                   mu * (RB::rotation_gradient(e)[ca] * dN[a])) *
+                                  JxW;
+                                local_B[k][dim + j](a) -= pairing;
+                                if (particles.closure() == AngularVelocityClosure::torque_balance)
+                                  local_C[k][dim + j](a) += pairing;
+                              }
+                          }
+                        if (particles.closure() == AngularVelocityClosure::kinematic)
+                          for (const unsigned int b : u_dofs)
+                            {
+                              Tensor<2, dim> G;
+                              G[comp[b]] = dN[b];
+                              const Tensor<1, 3> curl = RB::curl(G);
+                              for (unsigned int j = 0; j < n_rot; ++j)
+                                local_C[k][dim + j](b) -= 0.5 * (curl * RB::rotation_axis(j)) * JxW;
+                            }
+                      }
+                  }
+              }
+            else if (penalise)
+              {
+                // Weak λ = 0 on the fluid part of a cut cell (seed 3.18a), scaled like α.
+                const double s = fluid_penalty * alpha * JxW;
+                for (const unsigned int a : l_dofs)
+                  {
+                    cell_rhs(a) += s * l[q][comp[a]] * N[a];
+                    if (with_matrix)
+                      for (const unsigned int b : l_dofs)
+                        if (comp[a] == comp[b])
+                          cell_matrix(a, b) += s * N[a] * N[b];
+                  }
+              }
+          }
+
+        cell->get_dof_indices(dof_indices);
+        if (with_matrix)
+          {
+            constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, system.A,
+                                                   system.r_fe);
+            for (const int k : touching)
+              if (particles[k].first_unknown != numbers::invalid_unsigned_int)
+                for (unsigned int j = 0; j < RB::n_unknowns; ++j)
+                  {
+                    constraints.distribute_local_to_global(local_B[k][j], dof_indices,
+                                                           system.B[particles[k].first_unknown + j]);
+                    constraints.distribute_local_to_global(local_C[k][j], dof_indices,
+                                                           system.C[particles[k].first_unknown + j]);
+                  }
+          }
+        else
+          constraints.distribute_local_to_global(cell_rhs, dof_indices, system.r_fe);
+      }
+
+    system.r_fe.compress(VectorOperation::add);
+    if (with_matrix)
+      {
+        system.A.compress(VectorOperation::add);
+        for (auto &b : system.B)
+          b.compress(VectorOperation::add);
+        for (auto &cc : system.C)
+          cc.compress(VectorOperation::add);
+      }
+
+    // Sum the particle integrals over all ranks.
+    const MPI_Comm      comm = dof_handler.get_communicator();
+    std::vector<double> packed;
+    for (const auto &I : integrals)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          packed.push_back(I.lambda_force[d]);
+        for (unsigned int d = 0; d < 3; ++d)
+          packed.push_back(I.lambda_torque[d]);
+        for (unsigned int d = 0; d < 3; ++d)
+          packed.push_back(I.curl_u[d]);
+        packed.push_back(I.volume);
+      }
+    Utilities::MPI::sum(packed, comm, packed);
+    unsigned int pos = 0;
+    for (auto &I : integrals)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          I.lambda_force[d] = packed[pos++];
+        for (unsigned int d = 0; d < 3; ++d)
+          I.lambda_torque[d] = packed[pos++];
+        for (unsigned int d = 0; d < 3; ++d)
+          I.curl_u[d] = packed[pos++];
+        I.volume = packed[pos++];
+      }
+
+    // 4.–5. Particle rows, from the integrals.
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &P = particles[k];
+        if (P.first_unknown == numbers::invalid_unsigned_int)
+          continue;
+        const unsigned int     f = P.first_unknown;
+        const double           drho = P.density - rho;
+        const Tensor<1, dim>   dVdt = c[0] * P.velocity + c[1] * P.velocity_old + c[2] * P.velocity_old2;
+        const Tensor<1, 3>     dwdt = c[0] * P.omega + c[1] * P.omega_old + c[2] * P.omega_old2;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            system.r_p[f + d] =
+              drho * P.volume() * (dVdt[d] - fluid.gravity[d]) + integrals[k].lambda_force[d];
+            if (with_matrix)
+              system.D(f + d, f + d) = drho * P.volume() * c[0];
+          }
+        for (unsigned int j = 0; j < n_rot; ++j)
+          {
+            const Tensor<1, 3> e = RB::rotation_axis(j);
+            if (particles.closure() == AngularVelocityClosure::torque_balance)
+              {
+                system.r_p[f + dim + j] =
+                  drho * P.inertia() * (dwdt * e) + integrals[k].lambda_torque * e;
+                if (with_matrix)
+                  system.D(f + dim + j, f + dim + j) = drho * P.inertia() * c[0];
+              }
+            else
+              {
+                system.r_p[f + dim + j] =
+                  integrals[k].volume * (P.omega * e) - 0.5 * (integrals[k].curl_u * e);
+                if (with_matrix)
+                  system.D(f + dim + j, f + dim + j) = integrals[k].volume;
+              }
+          }
+      }
+    return integrals;
+  }
+
+  template <int dim>
+  IndexSet NavierStokesAssembler<dim>::active_multiplier_dofs(const DoFHandler<dim> &dof_handler,
+                                                              const IndexSet &locally_relevant) const
+  {
+    LinearAlgebra::distributed::Vector<double> marker(dof_handler.locally_owned_dofs(),
+                                                      locally_relevant,
+                                                      dof_handler.get_communicator());
+    FEValues<dim> fv(mapping, fe, quadrature.cut_rule(), update_quadrature_points);
+    typename CutCellQuadrature<dim>::CellRule rule;
+    std::vector<types::global_dof_index>      dof_indices(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        quadrature.reinit(cell, particles, rule);
+        if (rule.kind == CellKind::fluid)
+          continue;
+        if (rule.kind == CellKind::cut)
+          {
+            fv.reinit(cell);
+            quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
+            if (std::none_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; }))
+              continue;
+          }
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < dof_indices.size(); ++i)
+          {
+            const unsigned int c_i = fe.system_to_component_index(i).first;
+            if (c_i >= dim && c_i < 2 * dim)
+              marker[dof_indices[i]] = 1;
+          }
+      }
+    marker.compress(VectorOperation::max);
+    marker.update_ghost_values();
+    IndexSet active(dof_handler.n_dofs());
+    for (const auto i : locally_relevant)
+      if (marker[i] > 0)
+        active.add_index(i);
+    active.compress();
+    return active;
+  }
+
+  template <int dim>
+  Vector<float> NavierStokesAssembler<dim>::particle_fraction(const DoFHandler<dim> &dof_handler) const
+  {
+    Vector<float> fraction(dof_handler.get_triangulation().n_active_cells());
+    FEValues<dim> fv(mapping, fe, quadrature.cut_rule(), update_quadrature_points | update_JxW_values);
+    typename CutCellQuadrature<dim>::CellRule rule;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        quadrature.reinit(cell, particles, rule);
+        if (rule.kind == CellKind::inside)
+          fraction[cell->active_cell_index()] = 1;
+        else if (rule.kind == CellKind::cut)
+          {
+            fv.reinit(cell);
+            quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
+            double inside = 0, total = 0;
+            for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+              {
+                total += fv.JxW(q);
+                inside += (rule.owner[q] >= 0 ? fv.JxW(q) : 0.0);
+              }
+            fraction[cell->active_cell_index()] = inside / total;
+          }
+      }
+    return fraction;
+  }
+
+  template class NavierStokesAssembler<2>;
+  template class NavierStokesAssembler<3>;
+} // namespace fdparticle

@@ -1,0 +1,457 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_dgp.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <fdparticle/parameter_tools.h>
+#include <fdparticle/simulation.h>
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+
+namespace fdparticle
+{
+  namespace
+  {
+    double wall_clock()
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+    }
+
+    void declare_simulation_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Solver");
+      {
+        prm.declare_entry("Nonlinear tolerance", "1e-10", Patterns::Double(0),
+                          "Newton stops when the residual 2-norm is below this value, or below "
+                          "this value times the residual at the start of the step.");
+        prm.declare_entry("Max nonlinear iterations", "20", Patterns::Integer(1),
+                          "Newton iterations allowed per time step.");
+        prm.declare_entry("Line search", "true", Patterns::Bool(),
+                          "Halve the Newton step until the residual decreases (Navier-Stokes).");
+      }
+      prm.leave_subsection();
+      prm.enter_subsection("Initial conditions");
+      {
+        prm.declare_entry("Pressure", "zero", Patterns::Selection("zero|hydrostatic"),
+                          "Initial pressure: zero, or hydrostatic (rho_f g + f).(x - x_ref), "
+                          "x_ref the centre of the cell at the lower corner, where the pressure "
+                          "level is fixed. Velocity, multiplier and particles start at rest.");
+      }
+      prm.leave_subsection();
+    }
+  } // namespace
+
+  void declare_all_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Dimension", "3", Patterns::Integer(2, 3), "Space dimension, 2 or 3.");
+    Domain<3>::declare_parameters(prm);
+    Fluid<3>::declare_parameters(prm);
+    ParticleSet<3>::declare_parameters(prm);
+    TimeStepper::declare_parameters(prm);
+    CutCellQuadrature<3>::declare_parameters(prm);
+    NavierStokesAssembler<3>::declare_parameters(prm);
+    BorderedSystem::declare_parameters(prm);
+    OutputWriter<3>::declare_parameters(prm);
+    declare_simulation_parameters(prm);
+  }
+
+  template <int dim>
+  Simulation<dim>::Simulation(ParameterHandler &prm, const MPI_Comm comm)
+    : comm(comm)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+    , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , prm(prm)
+    , triangulation(comm,
+                    typename Triangulation<dim>::MeshSmoothing(
+                      Triangulation<dim>::limit_level_difference_at_vertices))
+    , fe(FE_Q<dim>(2), dim, FE_Q<dim>(2), dim, FE_DGP<dim>(1), 1)
+    , dof_handler(triangulation)
+    , assembler(fe, fluid, particles, quadrature)
+  {
+    domain.parse_parameters(prm);
+    fluid.parse_parameters(prm);
+    particles.parse_parameters(prm, domain);
+    time.parse_parameters(prm);
+    quadrature.parse_parameters(prm);
+    assembler.parse_parameters(prm);
+    system.parse_parameters(prm);
+    output.parse_parameters(prm);
+    prm.enter_subsection("Solver");
+    nonlinear_tolerance = prm.get_double("Nonlinear tolerance");
+    max_nonlinear_iterations = prm.get_integer("Max nonlinear iterations");
+    line_search = prm.get_bool("Line search");
+    prm.leave_subsection();
+    prm.enter_subsection("Initial conditions");
+    hydrostatic_start = (prm.get("Pressure") == "hydrostatic");
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_dofs()
+  {
+    TimerOutput::Scope t(timer, "setup");
+    dof_handler.distribute_dofs(fe);
+    owned_dofs = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    velocity_dofs = DoFTools::extract_dofs(dof_handler, fe.component_mask(FEValuesExtractors::Vector(0)));
+    // λ DoFs of owned and ghost cells: the constraints need them on every rank that sees them.
+    multiplier_dofs.clear();
+    multiplier_dofs.set_size(dof_handler.n_dofs());
+    {
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              {
+                const unsigned int c = fe.system_to_component_index(i).first;
+                if (c >= dim && c < 2 * dim)
+                  multiplier_dofs.add_index(dofs[i]);
+              }
+          }
+      multiplier_dofs.compress();
+    }
+
+    static_constraints.clear();
+    static_constraints.reinit(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, static_constraints);
+    domain.make_periodicity_constraints(dof_handler, static_constraints);
+    static_constraints.close();
+
+    // Couplings of formulation.md eqs. 1–3: u with everything, λ_i with u_i and λ_i
+    // (rigidity, fluid penalty), p with u.
+    Table<2, DoFTools::Coupling> coupling(2 * dim + 1, 2 * dim + 1);
+    for (unsigned int i = 0; i < 2 * dim + 1; ++i)
+      for (unsigned int j = 0; j < 2 * dim + 1; ++j)
+        {
+          const bool u_i = i < dim, u_j = j < dim, p_i = i == 2 * dim, p_j = j == 2 * dim;
+          const bool same = (i % dim == j % dim) && !p_i && !p_j;
+          coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || same) ?
+                             DoFTools::always :
+                             DoFTools::none;
+        }
+    TrilinosWrappers::SparsityPattern sparsity(owned_dofs, owned_dofs, relevant_dofs, comm);
+    DoFTools::make_sparsity_pattern(dof_handler, coupling, sparsity, static_constraints, true,
+                                    Utilities::MPI::this_mpi_process(comm));
+    sparsity.compress();
+    system.reinit(owned_dofs, sparsity, comm, particles.n_unknowns());
+
+    solution.reinit(owned_dofs, comm);
+    old_solution.reinit(owned_dofs, comm);
+    old_old_solution.reinit(owned_dofs, comm);
+    solution_ghost.reinit(owned_dofs, relevant_dofs, comm);
+    history_ghost.reinit(owned_dofs, relevant_dofs, comm);
+
+    // The pressure level is fixed by the mean pressure of the cell at the lower corner
+    // (the seed's "centre node of the first element"): no wall fixes it.
+    const unsigned int p_local = fe.component_to_system_index(2 * dim, 0);
+    double             best = std::numeric_limits<double>::max();
+    types::global_dof_index best_dof = 0;
+    Point<dim>              best_center;
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const double d = cell->center().distance(domain.lower_corner());
+          if (d < best)
+            {
+              best = d;
+              cell->get_dof_indices(dofs);
+              best_dof = dofs[p_local];
+              best_center = cell->center();
+            }
+        }
+    const double       global_best = Utilities::MPI::min(best, comm);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int root = Utilities::MPI::min(
+      best == global_best ? Utilities::MPI::this_mpi_process(comm) : n_ranks, comm);
+    pressure_reference_dof = Utilities::MPI::broadcast(comm, best_dof, root);
+    pressure_reference_point = Utilities::MPI::broadcast(comm, best_center, root);
+  }
+
+  template <int dim>
+  void Simulation<dim>::make_constraints()
+  {
+    TimerOutput::Scope t(timer, "constraints");
+    const FEValuesExtractors::Vector velocities(0), multipliers(dim);
+    const ComponentMask              u_mask = fe.component_mask(velocities);
+    const ComponentMask              l_mask = fe.component_mask(multipliers);
+    const IndexSet active = assembler.active_multiplier_dofs(dof_handler, relevant_dofs);
+
+    for (const bool homogeneous : {true, false})
+      {
+        AffineConstraints<double> &c = (homogeneous ? update_constraints : state_constraints);
+        c.clear();
+        c.reinit(relevant_dofs);
+        c.merge(static_constraints);
+        domain.make_wall_constraints(dof_handler, u_mask, l_mask, homogeneous, c);
+        // λ = 0 where its support meets no particle (seed 3.15a): not part of the solve.
+        for (const auto i : multiplier_dofs)
+          if (!active.is_element(i) && !c.is_constrained(i))
+            c.add_line(i);
+        if (relevant_dofs.is_element(pressure_reference_dof) &&
+            !c.is_constrained(pressure_reference_dof))
+          c.add_line(pressure_reference_dof);
+        c.close();
+      }
+  }
+
+  template <int dim>
+  void Simulation<dim>::set_initial_pressure()
+  {
+    if (!hydrostatic_start)
+      return;
+    // Local L2 projection: p is discontinuous, so each cell is independent, and the linear
+    // hydrostatic field is reproduced exactly.
+    const FEValuesExtractors::Scalar pressure(2 * dim);
+    QGauss<dim>                      q(3);
+    FEValues<dim> fv(assembler.get_mapping(), fe, q,
+                     update_values | update_quadrature_points | update_JxW_values);
+    std::vector<unsigned int> p_dofs;
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      if (fe.system_to_component_index(i).first == 2 * dim)
+        p_dofs.push_back(i);
+    const unsigned int                   np = p_dofs.size();
+    FullMatrix<double>                   M(np, np);
+    Vector<double>                       b(np), x(np);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    const Tensor<1, dim>                 grad = fluid.hydrostatic_gradient();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          M = 0;
+          b = 0;
+          for (unsigned int qp = 0; qp < q.size(); ++qp)
+            {
+              const double ps = grad * (fv.quadrature_point(qp) - pressure_reference_point);
+              for (unsigned int i = 0; i < np; ++i)
+                {
+                  b(i) += ps * fv.shape_value(p_dofs[i], qp) * fv.JxW(qp);
+                  for (unsigned int j = 0; j < np; ++j)
+                    M(i, j) += fv.shape_value(p_dofs[i], qp) * fv.shape_value(p_dofs[j], qp) *
+                               fv.JxW(qp);
+                }
+            }
+          M.gauss_jordan();
+          M.vmult(x, b);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < np; ++i)
+            solution[dofs[p_dofs[i]]] = x(i);
+        }
+    solution.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  void Simulation<dim>::update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals)
+  {
+    // formulation.md: F = ρ_f|P|(dV/dt − g) − <λ, e_i>, T = ρ_f J dω/dt − <λ, e_j × r>.
+    const auto c = time.coefficients();
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        Particle<dim> &P = particles[k];
+        const Tensor<1, dim> dVdt = c[0] * P.velocity + c[1] * P.velocity_old + c[2] * P.velocity_old2;
+        const Tensor<1, 3>   dwdt = c[0] * P.omega + c[1] * P.omega_old + c[2] * P.omega_old2;
+        P.force = fluid.density * P.volume() * (dVdt - fluid.gravity) - integrals[k].lambda_force;
+        P.torque = fluid.density * P.inertia() * dwdt - integrals[k].lambda_torque;
+        if (dim == 2)
+          P.torque[0] = P.torque[1] = 0;
+      }
+  }
+
+  template <int dim>
+  void Simulation<dim>::solve_time_step(StepStatistics &stats)
+  {
+    const auto c = time.coefficients();
+    // BDF history of the fluid: c1 u^n + c2 u^{n−1}.
+    {
+      TrilinosWrappers::MPI::Vector h(owned_dofs, comm);
+      h.add(c[1], old_solution, c[2], old_old_solution);
+      history_ghost = h;
+    }
+    solution = old_solution;
+    state_constraints.distribute(solution);
+    solution_ghost = solution;
+
+    auto assemble = [&](const bool with_matrix) {
+      TimerOutput::Scope t(timer, with_matrix ? "assemble system" : "assemble residual");
+      last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
+                                          update_constraints, with_matrix, system);
+      return system.residual_norm();
+    };
+
+    double residual = assemble(true);
+    stats.initial_residual = residual;
+    const double target = nonlinear_tolerance * std::max(1.0, residual);
+    unsigned int iteration = 0;
+    while (residual > target || (iteration == 0 && !fluid.convection && residual > nonlinear_tolerance))
+      {
+        AssertThrow(std::isfinite(residual),
+                    ExcMessage("The residual is not finite at t = " +
+                               std::to_string(time.time() + time.next_step()) + "."));
+        AssertThrow(iteration < max_nonlinear_iterations,
+                    ExcMessage("Newton did not converge in " +
+                               std::to_string(max_nonlinear_iterations) +
+                               " iterations at t = " +
+                               std::to_string(time.time() + time.next_step()) +
+                               " (residual " + std::to_string(residual) + ")."));
+        TrilinosWrappers::MPI::Vector dx;
+        Eigen::VectorXd               dy;
+        {
+          TimerOutput::Scope t(timer, "solve");
+          system.solve_newton_step(dx, dy);
+          update_constraints.distribute(dx);
+        }
+        ++iteration;
+        const TrilinosWrappers::MPI::Vector x0 = solution;
+        const Eigen::VectorXd               y0 = particles.get_unknowns();
+        double                              theta = 1.0;
+        for (;;)
+          {
+            solution = x0;
+            solution.add(theta, dx);
+            solution_ghost = solution;
+            particles.set_unknowns(y0 + theta * dy);
+            if (!fluid.convection)
+              break; // linear: the full step is the solution
+            const double trial = assemble(false);
+            if (!line_search || trial < residual || theta < 1.0 / 16)
+              break;
+            theta *= 0.5;
+          }
+        if (!fluid.convection)
+          {
+            residual = assemble(false);
+            break; // Stokes: one linear solve per step
+          }
+        residual = system.residual_norm();
+        if (residual > target)
+          residual = assemble(true);
+      }
+    stats.nonlinear_iterations = iteration;
+    stats.residual = residual;
+    update_particle_forces(last_integrals);
+  }
+
+  template <int dim>
+  double Simulation<dim>::max_velocity() const
+  {
+    double m = 0;
+    for (const auto i : velocity_dofs)
+      if (owned_dofs.is_element(i))
+        m = std::max(m, std::abs(solution[i]));
+    return Utilities::MPI::max(m, comm);
+  }
+
+  template <int dim>
+  double Simulation<dim>::hydrostatic_deviation() const
+  {
+    // RMS over Ω of p − p_static minus its mean: zero for a fluid at hydrostatic rest.
+    const FEValuesExtractors::Scalar pressure(2 * dim);
+    QGauss<dim>                      q(3);
+    FEValues<dim> fv(assembler.get_mapping(), fe, q,
+                     update_values | update_quadrature_points | update_JxW_values);
+    std::vector<double> p(q.size());
+    double              sums[3] = {0, 0, 0};
+    const Tensor<1, dim> grad = fluid.hydrostatic_gradient();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[pressure].get_function_values(solution_ghost, p);
+          for (unsigned int qp = 0; qp < q.size(); ++qp)
+            {
+              const double e = p[qp] - grad * (fv.quadrature_point(qp) - pressure_reference_point);
+              sums[0] += e * fv.JxW(qp);
+              sums[1] += e * e * fv.JxW(qp);
+              sums[2] += fv.JxW(qp);
+            }
+        }
+    Utilities::MPI::sum(ArrayView<const double>(sums, 3), comm, ArrayView<double>(sums, 3));
+    const double mean = sums[0] / sums[2];
+    return std::sqrt(std::max(0.0, sums[1] / sums[2] - mean * mean));
+  }
+
+  template <int dim>
+  void Simulation<dim>::write_output(const bool fields)
+  {
+    TimerOutput::Scope t(timer, "output");
+    output.write_particles_row(time.time(), particles);
+    if (fields)
+      output.write_fields(time.step_number(), time.time(), assembler.get_mapping(), dof_handler,
+                          solution_ghost, assembler.particle_fraction(dof_handler), particles);
+  }
+
+  template <int dim>
+  void Simulation<dim>::run()
+  {
+    wall_start = wall_clock();
+    domain.create_mesh(triangulation);
+    setup_dofs();
+    make_constraints();
+    set_initial_pressure();
+    state_constraints.distribute(solution);
+    solution_ghost = solution;
+    old_solution = solution;
+    old_old_solution = solution;
+    output.initialize(prm, comm);
+
+    pcout << "fdparticle: " << dim << "D, " << triangulation.n_global_active_cells()
+          << " cells, " << dof_handler.n_dofs() << " finite-element DoFs + "
+          << particles.n_unknowns() << " particle unknowns, " << particles.size()
+          << " particle(s), " << time.scheme_name() << ", "
+          << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
+          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)" << std::endl;
+
+    // t = 0: the state before the first step (forces are those of the fluid at rest).
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        particles[k].force = Tensor<1, dim>();
+        particles[k].torque = Tensor<1, 3>();
+      }
+    write_output(output.vtu_due(0));
+
+    while (!time.finished())
+      {
+        const double   step_start = wall_clock();
+        StepStatistics stats;
+        stats.step = time.step_number() + 1;
+        stats.dt = time.next_step();
+        particles.prepare_step(time);
+        make_constraints();
+        solve_time_step(stats);
+        particles.finish_step(time);
+        time.advance();
+        old_old_solution = old_solution;
+        old_solution = solution;
+
+        stats.time = time.time();
+        stats.cells = triangulation.n_global_active_cells();
+        stats.dofs = dof_handler.n_dofs() + particles.n_unknowns();
+        stats.max_velocity = max_velocity();
+        stats.hydrostatic_deviation = hydrostatic_deviation();
+        write_output(output.vtu_due(time.step_number()));
+        stats.wall_seconds = wall_clock() - step_start;
+        output.write_statistics_row(stats);
+        pcout << "step " << std::setw(5) << stats.step << "  t = " << std::setw(10)
+              << std::setprecision(6) << stats.time << "  Newton " << stats.nonlinear_iterations
+              << "  residual " << std::scientific << std::setprecision(3) << stats.residual
+              << std::defaultfloat << "  DoFs " << stats.dofs << "  " << std::setprecision(3)
+              << stats.wall_seconds << " s" << std::endl;
+      }
+    pcout << "fdparticle: done in " << std::setprecision(4) << wall_clock() - wall_start
+          << " s; output in " << output.directory() << std::endl;
+    timer.print_summary();
+  }
+
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace fdparticle
