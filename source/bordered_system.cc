@@ -28,13 +28,14 @@ namespace fdparticle
                               const MPI_Comm                           comm,
                               const unsigned int                       m)
   {
+    // The factorization refers to A's Epetra matrix: release it before A changes.
+    direct.reset();
     A.reinit(sparsity);
     r_fe.reinit(owned, comm);
     B.assign(m, r_fe);
     C.assign(m, r_fe);
     D.setZero(m, m);
     r_p.setZero(m);
-    direct.reset();
   }
 
   void BorderedSystem::zero(const bool with_matrix)
@@ -43,13 +44,13 @@ namespace fdparticle
     r_p.setZero();
     if (!with_matrix)
       return;
+    direct.reset();
     A = 0;
     for (auto &b : B)
       b = 0;
     for (auto &c : C)
       c = 0;
     D.setZero();
-    direct.reset();
   }
 
   double BorderedSystem::residual_norm() const

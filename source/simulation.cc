@@ -126,23 +126,6 @@ namespace fdparticle
     domain.make_periodicity_constraints(dof_handler, static_constraints);
     static_constraints.close();
 
-    // Couplings of formulation.md eqs. 1–3: u with everything, λ_i with u_i and λ_i
-    // (rigidity, fluid penalty), p with u.
-    Table<2, DoFTools::Coupling> coupling(2 * dim + 1, 2 * dim + 1);
-    for (unsigned int i = 0; i < 2 * dim + 1; ++i)
-      for (unsigned int j = 0; j < 2 * dim + 1; ++j)
-        {
-          const bool u_i = i < dim, u_j = j < dim, p_i = i == 2 * dim, p_j = j == 2 * dim;
-          const bool same = (i % dim == j % dim) && !p_i && !p_j;
-          coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || same) ?
-                             DoFTools::always :
-                             DoFTools::none;
-        }
-    TrilinosWrappers::SparsityPattern sparsity(owned_dofs, owned_dofs, relevant_dofs, comm);
-    DoFTools::make_sparsity_pattern(dof_handler, coupling, sparsity, static_constraints, true,
-                                    Utilities::MPI::this_mpi_process(comm));
-    sparsity.compress();
-    system.reinit(owned_dofs, sparsity, comm, particles.n_unknowns());
 
     solution.reinit(owned_dofs, comm);
     old_solution.reinit(owned_dofs, comm);
@@ -202,6 +185,32 @@ namespace fdparticle
           c.add_line(pressure_reference_dof);
         c.close();
       }
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_matrix()
+  {
+    TimerOutput::Scope t(timer, "setup");
+    // The pattern follows the constraints of this step: constrained DoFs (inactive λ,
+    // walls) keep only their diagonal, so the direct solver never sees the λ block away
+    // from the particles. Couplings of formulation.md eqs. 1–3: u with everything, λ_i with u_i and λ_i
+    // (rigidity, fluid penalty), p with u; p with p only for the diagonal of the
+    // constrained pressure-level DoF (cell-local, so cheap).
+    Table<2, DoFTools::Coupling> coupling(2 * dim + 1, 2 * dim + 1);
+    for (unsigned int i = 0; i < 2 * dim + 1; ++i)
+      for (unsigned int j = 0; j < 2 * dim + 1; ++j)
+        {
+          const bool u_i = i < dim, u_j = j < dim, p_i = i == 2 * dim, p_j = j == 2 * dim;
+          const bool same = (i % dim == j % dim) && !p_i && !p_j;
+          coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || (p_i && p_j) || same) ?
+                             DoFTools::always :
+                             DoFTools::none;
+        }
+    TrilinosWrappers::SparsityPattern sparsity(owned_dofs, owned_dofs, relevant_dofs, comm);
+    DoFTools::make_sparsity_pattern(dof_handler, coupling, sparsity, update_constraints, false,
+                                    Utilities::MPI::this_mpi_process(comm));
+    sparsity.compress();
+    system.reinit(owned_dofs, sparsity, comm, particles.n_unknowns());
   }
 
   template <int dim>
@@ -397,6 +406,7 @@ namespace fdparticle
     domain.create_mesh(triangulation);
     setup_dofs();
     make_constraints();
+    setup_matrix();
     set_initial_pressure();
     state_constraints.distribute(solution);
     solution_ghost = solution;
@@ -427,6 +437,7 @@ namespace fdparticle
         stats.dt = time.next_step();
         particles.prepare_step(time);
         make_constraints();
+        setup_matrix();
         solve_time_step(stats);
         particles.finish_step(time);
         time.advance();

@@ -46,6 +46,7 @@ namespace fdparticle
   private:
     void   setup_dofs();
     void   make_constraints();
+    void   setup_matrix();
     void   set_initial_pressure();
     void   solve_time_step(StepStatistics &stats);
     void   update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals);
