@@ -24,6 +24,7 @@ namespace fdparticle
   }
 
   void BorderedSystem::reinit(const IndexSet &                         owned,
+                              const IndexSet &                         relevant,
                               const TrilinosWrappers::SparsityPattern &sparsity,
                               const MPI_Comm                           comm,
                               const unsigned int                       m)
@@ -31,7 +32,9 @@ namespace fdparticle
     // The factorization refers to A's Epetra matrix: release it before A changes.
     direct.reset();
     A.reinit(sparsity);
-    r_fe.reinit(owned, comm);
+    // Writable ghost entries: cells at a partition boundary add into DoFs owned by a
+    // neighbour, and compress(add) ships them there.
+    r_fe.reinit(owned, relevant, comm, /*vector_writable=*/true);
     B.assign(m, r_fe);
     C.assign(m, r_fe);
     D.setZero(m, m);
@@ -68,15 +71,17 @@ namespace fdparticle
       }
     const unsigned int m = B.size();
 
-    TrilinosWrappers::MPI::Vector rhs(r_fe);
-    rhs *= -1.0;
-    x.reinit(r_fe);
+    const MPI_Comm comm = r_fe.get_mpi_communicator();
+    const IndexSet owned = r_fe.locally_owned_elements();
+    TrilinosWrappers::MPI::Vector rhs(owned, comm);
+    rhs.equ(-1.0, r_fe);
+    x.reinit(owned, comm);
     direct->solve(x, rhs); // x = z0 = −A⁻¹ r_fe
     y.setZero(m);
     if (m == 0)
       return;
 
-    std::vector<TrilinosWrappers::MPI::Vector> Z(m, r_fe);
+    std::vector<TrilinosWrappers::MPI::Vector> Z(m, x);
     Eigen::MatrixXd                            S = D;
     Eigen::VectorXd                            g = -r_p;
     for (unsigned int j = 0; j < m; ++j)

@@ -19,6 +19,28 @@ namespace
            "  --help              print this text\n"
            "  Run in parallel with: mpirun -np N fdparticle FILE.prm\n";
   }
+
+  /// Input errors surface in the constructor, on every rank alike, and end the program
+  /// normally. An error during the run may hit one rank only: then abort all of them,
+  /// or the others would wait for it forever.
+  template <int dim>
+  void run_scene(dealii::ParameterHandler &prm, const MPI_Comm comm)
+  {
+    using namespace dealii;
+    fdparticle::Simulation<dim> simulation(prm, comm);
+    try
+      {
+        simulation.run();
+      }
+    catch (std::exception &exc)
+      {
+        if (Utilities::MPI::n_mpi_processes(comm) == 1)
+          throw;
+        std::cerr << "fdparticle: error on rank " << Utilities::MPI::this_mpi_process(comm) << ": "
+                  << fdparticle::ParameterTools::one_line_message(exc) << std::endl;
+        MPI_Abort(comm, 1);
+      }
+  }
 } // namespace
 
 int main(int argc, char **argv)
@@ -62,9 +84,9 @@ int main(int argc, char **argv)
 
       const int dim = prm.get_integer("Dimension");
       if (dim == 2)
-        Simulation<2>(prm, comm).run();
+        run_scene<2>(prm, comm);
       else
-        Simulation<3>(prm, comm).run();
+        run_scene<3>(prm, comm);
     }
   catch (std::exception &exc)
     {

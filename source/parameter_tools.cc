@@ -2,6 +2,7 @@
 
 #include <fdparticle/parameter_tools.h>
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -75,33 +76,32 @@ namespace fdparticle
     std::string one_line_message(const std::exception &exc)
     {
       std::string message = exc.what();
-      // deal.II exceptions carry a framed report; the user's sentence follows this marker.
+      // deal.II exceptions carry a framed report: the user's sentence follows this marker
+      // and ends at the stack trace or the closing line of dashes.
       const std::string marker = "Additional information:";
       const auto        pos = message.find(marker);
       if (pos != std::string::npos)
-        message = message.substr(pos + marker.size());
-      const auto stack = message.find("Stacktrace:");
-      if (stack != std::string::npos)
-        message = message.substr(0, stack);
+        {
+          message = message.substr(pos + marker.size());
+          for (const std::string end : {"\nStacktrace:", "\n-----"})
+            {
+              const auto cut = message.find(end);
+              if (cut != std::string::npos)
+                message = message.substr(0, cut);
+            }
+        }
       std::string line;
       bool        space = false;
       for (const char c : message)
-        {
-          if (c == '\n' || c == '\r' || c == '\t' || c == ' ')
-            space = !line.empty();
-          else if (c == '-' && line.empty())
-            continue;
-          else
-            {
-              if (space)
-                line += ' ';
-              line += c;
-              space = false;
-            }
-        }
-      // Trailing frame dashes of the deal.II report.
-      while (!line.empty() && (line.back() == '-' || line.back() == ' '))
-        line.pop_back();
+        if (std::isspace(static_cast<unsigned char>(c)))
+          space = !line.empty();
+        else
+          {
+            if (space)
+              line += ' ';
+            line += c;
+            space = false;
+          }
       return line;
     }
 

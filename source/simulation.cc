@@ -66,7 +66,6 @@ namespace fdparticle
   Simulation<dim>::Simulation(ParameterHandler &prm, const MPI_Comm comm)
     : comm(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
-    , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
     , prm(prm)
     , triangulation(comm,
                     typename Triangulation<dim>::MeshSmoothing(
@@ -96,7 +95,7 @@ namespace fdparticle
   template <int dim>
   void Simulation<dim>::setup_dofs()
   {
-    TimerOutput::Scope t(timer, "setup");
+    TimerOutput::Scope t(*timer, "setup");
     dof_handler.distribute_dofs(fe);
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
@@ -163,7 +162,7 @@ namespace fdparticle
   template <int dim>
   void Simulation<dim>::make_constraints()
   {
-    TimerOutput::Scope t(timer, "constraints");
+    TimerOutput::Scope t(*timer, "constraints");
     const FEValuesExtractors::Vector velocities(0), multipliers(dim);
     const ComponentMask              u_mask = fe.component_mask(velocities);
     const ComponentMask              l_mask = fe.component_mask(multipliers);
@@ -190,7 +189,7 @@ namespace fdparticle
   template <int dim>
   void Simulation<dim>::setup_matrix()
   {
-    TimerOutput::Scope t(timer, "setup");
+    TimerOutput::Scope t(*timer, "setup");
     // The pattern follows the constraints of this step: constrained DoFs (inactive λ,
     // walls) keep only their diagonal, so the direct solver never sees the λ block away
     // from the particles. Couplings of formulation.md eqs. 1–3: u with everything, λ_i with u_i and λ_i
@@ -210,7 +209,7 @@ namespace fdparticle
     DoFTools::make_sparsity_pattern(dof_handler, coupling, sparsity, update_constraints, false,
                                     Utilities::MPI::this_mpi_process(comm));
     sparsity.compress();
-    system.reinit(owned_dofs, sparsity, comm, particles.n_unknowns());
+    system.reinit(owned_dofs, relevant_dofs, sparsity, comm, particles.n_unknowns());
   }
 
   template <int dim>
@@ -291,7 +290,7 @@ namespace fdparticle
     solution_ghost = solution;
 
     auto assemble = [&](const bool with_matrix) {
-      TimerOutput::Scope t(timer, with_matrix ? "assemble system" : "assemble residual");
+      TimerOutput::Scope t(*timer, with_matrix ? "assemble system" : "assemble residual");
       last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
                                           update_constraints, with_matrix, system);
       return system.residual_norm();
@@ -315,7 +314,7 @@ namespace fdparticle
         TrilinosWrappers::MPI::Vector dx;
         Eigen::VectorXd               dy;
         {
-          TimerOutput::Scope t(timer, "solve");
+          TimerOutput::Scope t(*timer, "solve");
           system.solve_newton_step(dx, dy);
           update_constraints.distribute(dx);
         }
@@ -392,7 +391,7 @@ namespace fdparticle
   template <int dim>
   void Simulation<dim>::write_output(const bool fields)
   {
-    TimerOutput::Scope t(timer, "output");
+    TimerOutput::Scope t(*timer, "output");
     output.write_particles_row(time.time(), particles);
     if (fields)
       output.write_fields(time.step_number(), time.time(), assembler.get_mapping(), dof_handler,
@@ -402,6 +401,9 @@ namespace fdparticle
   template <int dim>
   void Simulation<dim>::run()
   {
+    // Created here, not in the constructor: an input error must not trigger its warnings.
+    timer = std::make_unique<TimerOutput>(comm, pcout, TimerOutput::never,
+                                                TimerOutput::wall_times);
     wall_start = wall_clock();
     domain.create_mesh(triangulation);
     setup_dofs();
@@ -460,7 +462,8 @@ namespace fdparticle
       }
     pcout << "fdparticle: done in " << std::setprecision(4) << wall_clock() - wall_start
           << " s; output in " << output.directory() << std::endl;
-    timer.print_summary();
+    timer->print_summary();
+    timer.reset();
   }
 
   template class Simulation<2>;

@@ -36,7 +36,8 @@ namespace fdparticle
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
-    void reinit(const IndexSet &locally_owned, const TrilinosWrappers::SparsityPattern &sparsity,
+    void reinit(const IndexSet &locally_owned, const IndexSet &locally_relevant,
+                const TrilinosWrappers::SparsityPattern &sparsity,
                 const MPI_Comm comm, const unsigned int n_particle_unknowns);
 
     /// Zero A, B, C, D and the residuals (matrix parts only if with_matrix).

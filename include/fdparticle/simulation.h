@@ -20,6 +20,8 @@
 #include <fdparticle/particle_set.h>
 #include <fdparticle/time_stepper.h>
 
+#include <memory>
+
 namespace fdparticle
 {
   using namespace dealii;
@@ -56,7 +58,7 @@ namespace fdparticle
 
     MPI_Comm            comm;
     ConditionalOStream  pcout;
-    TimerOutput         timer;
+    std::unique_ptr<TimerOutput> timer;
     ParameterHandler &  prm;
 
     Domain<dim>            domain;

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Install dependencies, build, and run one scene: scripts/run-scene.sh [-np N] prm/sediment.prm
+set -euo pipefail
+top="$(cd "$(dirname "$0")/.." && pwd)"
+ranks=1
+if [ "${1:-}" = "-np" ]; then ranks="$2"; shift 2; fi
+[ $# -ge 1 ] || { echo "usage: scripts/run-scene.sh [-np N] FILE.prm" >&2; exit 2; }
+bash "$top/scripts/install-dependencies.sh"
+bash "$top/scripts/build.sh"
+if [ "$ranks" -gt 1 ]; then
+  # Open MPI refuses root without these; more ranks than cores need --oversubscribe.
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+  exec mpirun --oversubscribe -np "$ranks" "$top/build/fdparticle" "$@"
+fi
+exec "$top/build/fdparticle" "$@"

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Run one fdparticle regression/validation test, ASPECT style.
+
+A test is tests/NAME.prm; directives in its comment lines say what to check:
+
+  # test-ranks: 1, 2               run on each number of MPI ranks (default 1); with several,
+                                   particles.csv must agree between them (relative tolerance
+  # test-rank-tolerance: 1e-8      given here, default 1e-8)
+  # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
+                                   and leave no output directory behind
+  # test-args: ARGS                run 'fdparticle ARGS' instead of 'fdparticle NAME.prm'
+  # test-compare: FILE [FILE ...]  compare output files with tests/NAME/FILE (CSV, numeric,
+  # test-tolerance: REL ABS        |a-b| <= ABS + REL*|b|; wall_seconds is never compared)
+  # test-check: SCRIPT             run tests/NAME/SCRIPT OUTPUT_DIR; it exits non-zero on failure
+
+The output directory set in the prm is replaced by --work/ranks-N.
+"""
+import argparse
+import csv
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+IGNORED_COLUMNS = {"wall_seconds"}
+
+
+def directives(prm_text):
+    found = {}
+    for line in prm_text.splitlines():
+        m = re.match(r"^#\s*(test-[a-z-]+):\s*(.*)$", line)
+        if m:
+            found[m.group(1)] = m.group(2).strip()
+    return found
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], rows[1:]
+
+
+def compare_csv(actual, expected, rel, abs_tol):
+    """Return a list of mismatch descriptions (empty: files agree)."""
+    ha, ra = read_csv(actual)
+    he, re_ = read_csv(expected)
+    problems = []
+    if ha != he:
+        return [f"{os.path.basename(actual)}: header {ha} differs from expected {he}"]
+    if len(ra) != len(re_):
+        return [f"{os.path.basename(actual)}: {len(ra)} rows, expected {len(re_)}"]
+    for i, (a_row, e_row) in enumerate(zip(ra, re_)):
+        for name, a, e in zip(ha, a_row, e_row):
+            if name in IGNORED_COLUMNS:
+                continue
+            a, e = float(a), float(e)
+            if not abs(a - e) <= abs_tol + rel * abs(e):
+                problems.append(f"{os.path.basename(actual)} row {i + 1} column {name}: "
+                                f"{a!r} vs expected {e!r}")
+    return problems
+
+
+def run(executable, args, ranks, cwd):
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    cmd = [executable] + args
+    if ranks > 1:
+        cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
+    print("running:", " ".join(cmd), flush=True)
+    return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--executable", required=True)
+    parser.add_argument("--prm", required=True)
+    parser.add_argument("--work", required=True)
+    opts = parser.parse_args()
+
+    name = os.path.splitext(os.path.basename(opts.prm))[0]
+    with open(opts.prm) as f:
+        text = f.read()
+    d = directives(text)
+    shutil.rmtree(opts.work, ignore_errors=True)
+    os.makedirs(opts.work)
+    failures = []
+
+    ranks_list = [int(r) for r in d.get("test-ranks", "1").split(",")]
+    outputs = []
+    for ranks in ranks_list:
+        out_dir = os.path.join(opts.work, f"ranks-{ranks}")
+        prm_copy = os.path.join(opts.work, f"{name}-ranks-{ranks}.prm")
+        with open(prm_copy, "w") as f:
+            # A later 'set' overrides an earlier one: redirect the output.
+            f.write(text + f"\nsubsection Output\n  set Directory = {out_dir}\nend\n")
+        args = d["test-args"].split() if "test-args" in d else [prm_copy]
+        result = run(opts.executable, args, ranks, opts.work)
+        sys.stdout.write(result.stdout[-4000:])
+        sys.stderr.write(result.stderr[-4000:])
+
+        if "test-expect-error" in d:
+            expected = d["test-expect-error"]
+            if result.returncode == 0:
+                failures.append("the run succeeded, but it should have failed")
+            if expected not in result.stderr:
+                failures.append(f"stderr does not contain {expected!r}")
+            if len([l for l in result.stderr.splitlines() if l.startswith("fdparticle: error")]) != 1:
+                failures.append("expected exactly one 'fdparticle: error' line")
+            if os.path.exists(out_dir):
+                failures.append(f"output directory {out_dir} was created despite the error")
+            continue
+        if result.returncode != 0:
+            failures.append(f"fdparticle exited with {result.returncode}")
+            continue
+        outputs.append(out_dir)
+
+        if "test-compare" in d:
+            rel, abs_tol = (float(x) for x in d.get("test-tolerance", "1e-6 1e-10").split())
+            for fname in d["test-compare"].split():
+                expected = os.path.join(HERE, name, fname)
+                actual = os.path.join(out_dir, fname)
+                if not os.path.exists(actual):
+                    failures.append(f"{fname} was not written")
+                    continue
+                if not os.path.exists(expected):
+                    failures.append(f"no stored {expected}; to create it: cp {actual} {expected}")
+                    continue
+                failures += compare_csv(actual, expected, rel, abs_tol)
+        if "test-check" in d:
+            script = os.path.join(HERE, name, d["test-check"])
+            check = subprocess.run([sys.executable, script, out_dir], capture_output=True, text=True,
+                                   env=dict(os.environ, PYTHONPATH=HERE))
+            sys.stdout.write(check.stdout)
+            sys.stderr.write(check.stderr)
+            if check.returncode != 0:
+                failures.append(f"check {d['test-check']} failed")
+
+    if len(outputs) > 1:
+        tol = float(d.get("test-rank-tolerance", "1e-8"))
+        base = os.path.join(outputs[0], "particles.csv")
+        for other in outputs[1:]:
+            # Relative agreement; the absolute floor only absorbs round-off around zero.
+            for p in compare_csv(os.path.join(other, "particles.csv"), base, tol, 1e-12):
+                failures.append(f"{os.path.basename(other)} vs {os.path.basename(outputs[0])}: {p}")
+
+    for f in failures[:30]:
+        print("FAIL:", f)
+    if failures:
+        print(f"{name}: {len(failures)} failure(s)")
+        return 1
+    print(f"{name}: passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

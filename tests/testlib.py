@@ -1,0 +1,23 @@
+"""Helpers for tests/NAME/check.py scripts: read fdparticle's CSV output, assert with context."""
+import csv
+import os
+import sys
+
+
+def table(out_dir, name):
+    """Rows of OUT_DIR/NAME as dicts of floats."""
+    with open(os.path.join(out_dir, name), newline="") as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+_failures = []
+
+
+def check(condition, message):
+    print(("ok:   " if condition else "FAIL: ") + message)
+    if not condition:
+        _failures.append(message)
+
+
+def finish():
+    sys.exit(1 if _failures else 0)
