@@ -61,6 +61,7 @@ namespace fdparticle
   {
     int particle = -1;
     rule.kind = classify(cell, particles, particle);
+    rule.particle = particle;
     rule.quadrature = (rule.kind == CellKind::cut ? &cut : &regular);
     rule.owner.assign(rule.quadrature->size(), rule.kind == CellKind::fluid ? -1 : particle);
   }

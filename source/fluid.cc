@@ -14,9 +14,9 @@ namespace fdparticle
       prm.declare_entry("Viscosity", "1", Patterns::Anything(), "Dynamic viscosity mu > 0.");
       prm.declare_entry("Convection", "true", Patterns::Bool(),
                         "true: Navier-Stokes (Newton); false: Stokes (one linear solve a step).");
-      prm.declare_entry("Body force", "0, 0, 0", Patterns::Anything(),
+      prm.declare_entry("Body force", "", Patterns::Anything(),
                         "Uniform force per unit volume on the whole box, e.g. a mean pressure "
-                        "gradient driving a periodic box.");
+                        "gradient driving a periodic box (Dimension numbers; empty: none).");
     }
     prm.leave_subsection();
   }
@@ -37,7 +37,9 @@ namespace fdparticle
                   ExcMessage("Parameter 'Fluid/Viscosity' must be positive, got " +
                              prm.get("Viscosity") + "."));
       convection = prm.get_bool("Convection");
-      body_force = get_tensor<dim>(prm, "Body force", "Fluid/Body force");
+      body_force = trim(prm.get("Body force")).empty() ?
+                     Tensor<1, dim>() :
+                     get_tensor<dim>(prm, "Body force", "Fluid/Body force");
     }
     prm.leave_subsection();
   }

@@ -24,10 +24,16 @@ namespace fdparticle
   {
     prm.enter_subsection("Multiplier");
     {
-      prm.declare_entry("Fluid penalty", "1", Patterns::Anything(),
-                        "s >= 0 in the term s*alpha*int(lambda.eta) over the fluid part of cut "
+      prm.declare_entry("Fluid penalty", "0.01", Patterns::Anything(),
+                        "s >= 0 in the term s*(alpha + mu/R^2)*int(lambda.eta) over the fluid part of cut "
                         "cells (the seed's weak lambda = 0 in the fluid, 3.18a). It keeps the "
                         "rows of multipliers that barely meet a particle well posed.");
+      prm.declare_entry("Interior pressure penalty", "1", Patterns::Anything(),
+                        "delta >= 0 in the term (delta/mu)*int((p - p_hydrostatic) q) over cells "
+                        "inside a particle. Inside a rigid body p and lambda are determined only "
+                        "together (p + phi, lambda + psi with <psi, v> = int phi div v solve the "
+                        "same equations); this picks the hydrostatic pressure there. Forces, "
+                        "torques and velocities do not depend on it.");
     }
     prm.leave_subsection();
   }
@@ -39,6 +45,10 @@ namespace fdparticle
     fluid_penalty = ParameterTools::to_double(prm.get("Fluid penalty"), "Multiplier/Fluid penalty");
     AssertThrow(fluid_penalty >= 0,
                 ExcMessage("Parameter 'Multiplier/Fluid penalty' must not be negative."));
+    interior_pressure_penalty = ParameterTools::to_double(prm.get("Interior pressure penalty"),
+                                                          "Multiplier/Interior pressure penalty");
+    AssertThrow(interior_pressure_penalty >= 0,
+                ExcMessage("Parameter 'Multiplier/Interior pressure penalty' must not be negative."));
     prm.leave_subsection();
   }
 
@@ -164,6 +174,19 @@ namespace fdparticle
                              JxW;
             for (const unsigned int i : p_dofs)
               cell_rhs(i) -= N[i] * div_u * JxW;
+            if (rule.kind == CellKind::inside && interior_pressure_penalty > 0)
+              {
+                // Fix the pressure/multiplier null mode inside rigid bodies (see parameter).
+                const double eps = interior_pressure_penalty / mu * JxW;
+                const double p_static = static_force * (fv.quadrature_point(q) - pressure_reference);
+                for (const unsigned int i : p_dofs)
+                  {
+                    cell_rhs(i) += eps * (p[q] - p_static) * N[i];
+                    if (with_matrix)
+                      for (const unsigned int j : p_dofs)
+                        cell_matrix(i, j) += eps * N[i] * N[j];
+                  }
+              }
             if (with_matrix)
               for (const unsigned int i : u_dofs)
                 {
@@ -257,8 +280,11 @@ namespace fdparticle
               }
             else if (penalise)
               {
-                // Weak λ = 0 on the fluid part of a cut cell (seed 3.18a), scaled like α.
-                const double s = fluid_penalty * alpha * JxW;
+                // Weak λ = 0 on the fluid part of a cut cell (seed 3.18a), weighted by
+                // α + μ/R²: the pairing's size on the scale of the particle, so that the weight
+                // stays finite for large Δt and does not change with h (doc/method.md).
+                const double R = particles[rule.particle].radius;
+                const double s = fluid_penalty * (alpha + mu / (R * R)) * JxW;
                 for (const unsigned int a : l_dofs)
                   {
                     cell_rhs(a) += s * l[q][comp[a]] * N[a];

@@ -157,6 +157,7 @@ namespace fdparticle
       best == global_best ? Utilities::MPI::this_mpi_process(comm) : n_ranks, comm);
     pressure_reference_dof = Utilities::MPI::broadcast(comm, best_dof, root);
     pressure_reference_point = Utilities::MPI::broadcast(comm, best_center, root);
+    assembler.set_pressure_reference(pressure_reference_point);
   }
 
   template <int dim>

@@ -37,6 +37,7 @@ namespace fdparticle
     struct CellRule
     {
       CellKind                kind = CellKind::fluid;
+      int                     particle = -1; ///< the particle that meets the cell (first one)
       const Quadrature<dim> * quadrature = nullptr;
       std::vector<int>        owner;
     };

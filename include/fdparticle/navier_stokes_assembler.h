@@ -38,7 +38,7 @@ namespace fdparticle
    * left-hand side of each equation; Newton solves J δ = −R.
    *
    *  1. momentum   ∫ ρ(∂_t u + u·∇u − g)·v − f·v + 2μ ε(u):ε(v) − p ∇·v − Σ_k <λ, v>_{P_k}
-   *  2. continuity −∫ q ∇·u
+   *  2. continuity −∫ q ∇·u  (+ (δ/μ) ∫ (p − p_hydrostatic) q in cells inside a particle)
    *  3. rigidity   <η, u − V_k − ω_k × r>_{P_k}  (+ s α ∫_{Ω_f ∩ cut cells} λ·η)
    *  4. translation (ρ_k − ρ_f)|P_k|(dV_k/dt − g) + <λ, e_i>_{P_k}
    *  5. rotation   (ρ_k − ρ_f) J_k dω_k/dt + <λ, e_j × r>_{P_k}, or the seed's kinematic
@@ -79,6 +79,9 @@ namespace fdparticle
 
     const MappingQ<dim> &get_mapping() const { return mapping; }
 
+    /// The point where the hydrostatic pressure is zero (the pressure level's cell centre).
+    void set_pressure_reference(const Point<dim> &x) { pressure_reference = x; }
+
   private:
     const FESystem<dim> &         fe;
     const Fluid<dim> &            fluid;
@@ -86,6 +89,8 @@ namespace fdparticle
     const CutCellQuadrature<dim> &quadrature;
     MappingQ<dim>                 mapping{1};
     double                        fluid_penalty = 1.0;
+    double                        interior_pressure_penalty = 1.0;
+    Point<dim>                    pressure_reference;
   };
 } // namespace fdparticle
 

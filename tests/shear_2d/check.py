@@ -1,0 +1,10 @@
+"""Free disk in simple shear, Stokes: omega_z = -gammadot/2 = -0.5 (a torque-free cylinder
+turns with the fluid's rotation rate; shared/references/README.md, Stokes limit)."""
+import sys
+from testlib import table, check, finish
+
+last = table(sys.argv[1], "particles.csv")[-1]
+check(abs(last["wz"] / -0.5 - 1) < 0.02, f"omega_z = {last['wz']:.6f} = -0.5 within 2 %")
+v = max(abs(last[c]) for c in ("vx", "vy"))
+check(v < 5e-4, f"the disk at the centre stays (|V| = {v:.2e} < 1e-3 U): it has no reason to move")
+finish()
