@@ -68,6 +68,21 @@ namespace fdparticle
     }
     prm.leave_subsection();
 
+    check_positions(domain, 0.0);
+
+    n_block_unknowns = 0;
+    for (Particle<dim> &p : particles)
+      if (p.motion == ParticleMotion::free)
+        {
+          p.first_unknown = n_block_unknowns;
+          n_block_unknowns += RigidBody<dim>::n_unknowns;
+        }
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::check_positions(const Domain<dim> &domain, const double time) const
+  {
+    const std::string when = (time == 0.0 ? "" : " at t = " + std::to_string(time));
     // The ball must lie inside the box. In a wall-bounded direction it may not touch the
     // wall; in a periodic direction it may not cross the boundary (no periodic images).
     for (const Particle<dim> &p : particles)
@@ -77,29 +92,22 @@ namespace fdparticle
                                    std::string(1, "xyz"[d]) + " = " +
                                    std::to_string(p.position[d]) +
                                    ", radius " + std::to_string(p.radius) + ")";
-          AssertThrow(p.position[d] > domain.lower_corner()[d] &&
-                        p.position[d] < domain.upper_corner()[d],
+          AssertThrow(time > 0.0 || (p.position[d] > domain.lower_corner()[d] &&
+                                     p.position[d] < domain.upper_corner()[d]),
                       ExcMessage(what + " lies outside the box."));
           AssertThrow(p.position[d] - p.radius > domain.lower_corner()[d] &&
                         p.position[d] + p.radius < domain.upper_corner()[d],
                       ExcMessage(what + (domain.is_periodic(d) ?
-                                           " crosses a periodic boundary of the box." :
-                                           " overlaps a wall of the box.")));
+                                           " crosses a periodic boundary of the box" :
+                                           " overlaps a wall of the box") +
+                                 when + (time == 0.0 ? "." : " (no particle-wall contact model yet).")));
         }
     for (unsigned int i = 0; i < particles.size(); ++i)
       for (unsigned int j = i + 1; j < particles.size(); ++j)
         AssertThrow(particles[i].position.distance(particles[j].position) >
                       particles[i].radius + particles[j].radius,
                     ExcMessage("Particles " + std::to_string(i + 1) + " and " +
-                               std::to_string(j + 1) + " overlap."));
-
-    n_block_unknowns = 0;
-    for (Particle<dim> &p : particles)
-      if (p.motion == ParticleMotion::free)
-        {
-          p.first_unknown = n_block_unknowns;
-          n_block_unknowns += RigidBody<dim>::n_unknowns;
-        }
+                               std::to_string(j + 1) + " overlap" + when + "."));
   }
 
   template <int dim>

@@ -444,6 +444,7 @@ namespace fdparticle
         solve_time_step(stats);
         particles.finish_step(time);
         time.advance();
+        particles.check_positions(domain, time.time());
         old_old_solution = old_solution;
         old_solution = solution;
 

@@ -8,6 +8,7 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
   # test-rank-tolerance: 1e-8      given here, default 1e-8)
   # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
                                    and leave no output directory behind
+  # test-expect-runtime-error: TEXT  the same, but the run may have written output first
   # test-args: ARGS                run 'fdparticle ARGS' instead of 'fdparticle NAME.prm'
   # test-compare: FILE [FILE ...]  compare output files with tests/NAME/FILE (CSV, numeric,
   # test-tolerance: REL ABS        |a-b| <= ABS + REL*|b|; wall_seconds is never compared)
@@ -99,15 +100,16 @@ def main():
         sys.stdout.write(result.stdout[-4000:])
         sys.stderr.write(result.stderr[-4000:])
 
-        if "test-expect-error" in d:
-            expected = d["test-expect-error"]
+        runtime = "test-expect-runtime-error" in d
+        if "test-expect-error" in d or runtime:
+            expected = d["test-expect-runtime-error" if runtime else "test-expect-error"]
             if result.returncode == 0:
                 failures.append("the run succeeded, but it should have failed")
             if expected not in result.stderr:
                 failures.append(f"stderr does not contain {expected!r}")
             if len([l for l in result.stderr.splitlines() if l.startswith("fdparticle: error")]) != 1:
                 failures.append("expected exactly one 'fdparticle: error' line")
-            if os.path.exists(out_dir):
+            if os.path.exists(out_dir) and not runtime:
                 failures.append(f"output directory {out_dir} was created despite the error")
             continue
         if result.returncode != 0:

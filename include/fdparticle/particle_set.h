@@ -96,6 +96,13 @@ namespace fdparticle
     /// Accept the step: move the balls with the BDF formula, rotate, shift the history.
     void finish_step(const TimeStepper &time);
 
+    /**
+     * Throw a one-sentence error if a ball touches a wall, crosses a periodic boundary or
+     * overlaps another ball: fdparticle has no contact model yet, and past that point the
+     * results would be meaningless. Called after each step (and by parse_parameters).
+     */
+    void check_positions(const Domain<dim> &domain, const double time) const;
+
   private:
     std::vector<Particle<dim>> particles;
     AngularVelocityClosure     angular_closure = AngularVelocityClosure::torque_balance;
