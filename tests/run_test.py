@@ -12,7 +12,7 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
   # test-args: ARGS                run 'fdparticle ARGS' instead of 'fdparticle NAME.prm'
   # test-compare: FILE [FILE ...]  compare output files with tests/NAME/FILE (CSV, numeric,
   # test-tolerance: REL ABS        |a-b| <= ABS + REL*|b|; wall_seconds is never compared)
-  # test-check: SCRIPT             run tests/NAME/SCRIPT OUTPUT_DIR; it exits non-zero on failure
+  # test-check: SCRIPT             run tests/SCRIPT OUTPUT_DIR; it exits non-zero on failure
 
 The output directory set in the prm is replaced by --work/ranks-N.
 """
@@ -130,7 +130,7 @@ def main():
                     continue
                 failures += compare_csv(actual, expected, rel, abs_tol)
         if "test-check" in d:
-            script = os.path.join(HERE, name, d["test-check"])
+            script = os.path.join(HERE, d["test-check"])
             check = subprocess.run([sys.executable, script, out_dir], capture_output=True, text=True,
                                    env=dict(os.environ, PYTHONPATH=HERE))
             sys.stdout.write(check.stdout)

@@ -22,6 +22,8 @@
 #include <fdparticle/particle_set.h>
 #include <fdparticle/simulation.h>
 
+#include "unit_check.h"
+
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -32,21 +34,10 @@
 
 using namespace dealii;
 using namespace fdparticle;
+using namespace unit_check;
 
 namespace
 {
-  unsigned int n_checks = 0, n_failed = 0;
-
-  void check(const bool ok, const std::string &what, const std::string &detail = "")
-  {
-    ++n_checks;
-    if (!ok)
-      ++n_failed;
-    std::cout << (ok ? "  ok    " : "  FAIL  ") << what;
-    if (!ok && !detail.empty())
-      std::cout << "  [" << detail << "]";
-    std::cout << std::endl;
-  }
 
   std::string sci(const double x)
   {
@@ -451,7 +442,5 @@ int main(int argc, char **argv)
   std::cout << "Run time "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s" << std::endl;
-  std::cout << (n_failed == 0 ? "PASSED" : "FAILED") << ": " << n_checks - n_failed << " of "
-            << n_checks << " checks" << std::endl;
-  return n_failed == 0 ? 0 : 1;
+  return unit_check::summary();
 }

@@ -12,6 +12,8 @@
 #include <fdparticle/particle_set.h>
 #include <fdparticle/simulation.h>
 
+#include "unit_check.h"
+
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -21,21 +23,10 @@
 
 using namespace dealii;
 using namespace fdparticle;
+using namespace unit_check;
 
 namespace
 {
-  unsigned int n_checks = 0, n_failed = 0;
-
-  void check(const bool ok, const std::string &what, const std::string &detail = "")
-  {
-    ++n_checks;
-    if (!ok)
-      ++n_failed;
-    std::cout << (ok ? "  ok    " : "  FAIL  ") << what;
-    if (!ok && !detail.empty())
-      std::cout << "  [" << detail << "]";
-    std::cout << std::endl;
-  }
 
   void check_close(const double value, const double expected, const std::string &what)
   {
@@ -355,7 +346,5 @@ int main()
       std::cerr << "Unexpected exception: " << ParameterTools::one_line_message(exc) << std::endl;
       return 2;
     }
-  std::cout << (n_failed == 0 ? "PASSED" : "FAILED") << ": " << n_checks - n_failed << " of "
-            << n_checks << " checks" << std::endl;
-  return n_failed == 0 ? 0 : 1;
+  return unit_check::summary();
 }

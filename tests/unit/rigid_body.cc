@@ -10,6 +10,8 @@
 
 #include <fdparticle/rigid_body.h>
 
+#include "unit_check.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -18,40 +20,10 @@
 
 using namespace dealii;
 using namespace fdparticle;
+using namespace unit_check;
 
 namespace
 {
-  unsigned int n_checks = 0, n_failed = 0;
-
-  void check(const bool ok, const std::string &what, const std::string &detail = "")
-  {
-    ++n_checks;
-    if (!ok)
-      ++n_failed;
-    std::cout << (ok ? "  ok    " : "  FAIL  ") << what;
-    if (!ok && !detail.empty())
-      std::cout << "  [" << detail << "]";
-    std::cout << std::endl;
-  }
-
-  void check_close(const double value, const double expected, const double tol,
-                   const std::string &what)
-  {
-    std::ostringstream s;
-    s.precision(17);
-    s << "got " << value << ", expected " << expected << ", tol " << tol;
-    check(std::abs(value - expected) <= tol, what, s.str());
-  }
-
-  template <int rank, int dim>
-  void check_close(const Tensor<rank, dim> &value, const Tensor<rank, dim> &expected,
-                   const double tol, const std::string &what)
-  {
-    std::ostringstream s;
-    s.precision(17);
-    s << "got (" << value << "), expected (" << expected << "), tol " << tol;
-    check((value - expected).norm() <= tol, what, s.str());
-  }
 
   /// The Levi-Civita symbol ε_ijk for i, j, k in 0..2.
   double levi_civita(const unsigned int i, const unsigned int j, const unsigned int k)
@@ -310,7 +282,5 @@ int main()
       std::cerr << "Unexpected exception: " << exc.what() << std::endl;
       return 2;
     }
-  std::cout << (n_failed == 0 ? "PASSED" : "FAILED") << ": " << n_checks - n_failed << " of "
-            << n_checks << " checks" << std::endl;
-  return n_failed == 0 ? 0 : 1;
+  return unit_check::summary();
 }

@@ -12,6 +12,8 @@
 #include <fdparticle/parameter_tools.h>
 #include <fdparticle/time_stepper.h>
 
+#include "unit_check.h"
+
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -20,30 +22,10 @@
 
 using namespace dealii;
 using namespace fdparticle;
+using namespace unit_check;
 
 namespace
 {
-  unsigned int n_checks = 0, n_failed = 0;
-
-  void check(const bool ok, const std::string &what, const std::string &detail = "")
-  {
-    ++n_checks;
-    if (!ok)
-      ++n_failed;
-    std::cout << (ok ? "  ok    " : "  FAIL  ") << what;
-    if (!ok && !detail.empty())
-      std::cout << "  [" << detail << "]";
-    std::cout << std::endl;
-  }
-
-  void check_close(const double value, const double expected, const double tol,
-                   const std::string &what)
-  {
-    std::ostringstream s;
-    s.precision(17);
-    s << "got " << value << ", expected " << expected << ", tol " << tol;
-    check(std::abs(value - expected) <= tol, what, s.str());
-  }
 
   /// A TimeStepper read from the given 'Time' entries.
   TimeStepper make_stepper(const std::string &scheme, const std::string &dt,
@@ -232,7 +214,5 @@ int main()
       std::cerr << "Unexpected exception: " << exc.what() << std::endl;
       return 2;
     }
-  std::cout << (n_failed == 0 ? "PASSED" : "FAILED") << ": " << n_checks - n_failed << " of "
-            << n_checks << " checks" << std::endl;
-  return n_failed == 0 ? 0 : 1;
+  return unit_check::summary();
 }

@@ -1,0 +1,58 @@
+#ifndef fdparticle_tests_unit_check_h
+#define fdparticle_tests_unit_check_h
+
+// The checks every unit test prints and counts: one line per check, "ok" or "FAIL" with the
+// value found and the value expected; summary() is the program's exit code.
+
+#include <deal.II/base/tensor.h>
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace unit_check
+{
+  inline unsigned int n_checks = 0, n_failed = 0;
+
+  inline void check(const bool ok, const std::string &what, const std::string &detail = "")
+  {
+    ++n_checks;
+    if (!ok)
+      ++n_failed;
+    std::cout << (ok ? "  ok    " : "  FAIL  ") << what;
+    if (!ok && !detail.empty())
+      std::cout << "  [" << detail << "]";
+    std::cout << std::endl;
+  }
+
+  inline void check_close(const double value, const double expected, const double tol,
+                          const std::string &what)
+  {
+    std::ostringstream s;
+    s.precision(17);
+    s << "got " << value << ", expected " << expected << ", tol " << tol;
+    check(std::abs(value - expected) <= tol, what, s.str());
+  }
+
+  template <int rank, int dim>
+  void check_close(const dealii::Tensor<rank, dim> &value,
+                   const dealii::Tensor<rank, dim> &expected, const double tol,
+                   const std::string &what)
+  {
+    std::ostringstream s;
+    s.precision(17);
+    s << "got " << value << ", expected " << expected << ", tol " << tol;
+    check((value - expected).norm() <= tol, what, s.str());
+  }
+
+  /// Print the tally; 0 if every check passed (use as main's return value).
+  inline int summary()
+  {
+    std::cout << (n_failed == 0 ? "PASSED" : "FAILED") << ": " << n_checks - n_failed << " of "
+              << n_checks << " checks" << std::endl;
+    return n_failed == 0 ? 0 : 1;
+  }
+} // namespace unit_check
+
+#endif
