@@ -72,6 +72,7 @@ namespace fdparticle
     double       nonlinear_tolerance = 1e-10;
     unsigned int max_nonlinear_iterations = 20;
     bool         line_search = true;
+    bool         reuse_jacobian = true;
     bool         hydrostatic_start = false;
 
     parallel::distributed::Triangulation<dim> triangulation;
