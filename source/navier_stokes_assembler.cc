@@ -17,6 +17,23 @@ namespace fdparticle
       multiplier = 1,
       pressure = 2
     };
+
+    /// FEValues for the rule of a cell: the two fixed rules are reused, a rule made for
+    /// this cell alone (level set) gets its own object.
+    template <int dim>
+    FEValues<dim> &fe_values_for(const typename CutCellQuadrature<dim>::CellRule &rule,
+                                 FEValues<dim> &regular, FEValues<dim> &cut,
+                                 std::unique_ptr<FEValues<dim>> &cell_specific)
+    {
+      if (rule.quadrature == &rule.cell_specific)
+        {
+          cell_specific = std::make_unique<FEValues<dim>>(regular.get_mapping(), regular.get_fe(),
+                                                          rule.cell_specific,
+                                                          regular.get_update_flags());
+          return *cell_specific;
+        }
+      return rule.kind == CellKind::cut ? cut : regular;
+    }
   } // namespace
 
   template <int dim>
@@ -77,6 +94,7 @@ namespace fdparticle
       update_values | update_gradients | update_quadrature_points | update_JxW_values;
     FEValues<dim> fe_regular(mapping, fe, quadrature.regular_rule(), flags);
     FEValues<dim> fe_cut(mapping, fe, quadrature.cut_rule(), flags);
+    std::unique_ptr<FEValues<dim>> fe_cell_specific;
 
     // Every shape function is primitive: one field, one vector component.
     const unsigned int        n = fe.n_dofs_per_cell();
@@ -119,7 +137,7 @@ namespace fdparticle
         if (!cell->is_locally_owned())
           continue;
         quadrature.reinit(cell, particles, rule);
-        FEValues<dim> &fv = (rule.kind == CellKind::cut ? fe_cut : fe_regular);
+        FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
         fv.reinit(cell);
         quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
         const unsigned int nq = fv.n_quadrature_points;
@@ -397,7 +415,9 @@ namespace fdparticle
     LinearAlgebra::distributed::Vector<double> marker(dof_handler.locally_owned_dofs(),
                                                       locally_relevant,
                                                       dof_handler.get_communicator());
-    FEValues<dim> fv(mapping, fe, quadrature.cut_rule(), update_quadrature_points);
+    FEValues<dim> fe_regular(mapping, fe, quadrature.regular_rule(), update_quadrature_points);
+    FEValues<dim> fe_cut(mapping, fe, quadrature.cut_rule(), update_quadrature_points);
+    std::unique_ptr<FEValues<dim>>            fe_cell_specific;
     typename CutCellQuadrature<dim>::CellRule rule;
     std::vector<types::global_dof_index>      dof_indices(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -409,6 +429,7 @@ namespace fdparticle
           continue;
         if (rule.kind == CellKind::cut)
           {
+            FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
             fv.reinit(cell);
             quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
             if (std::none_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; }))
@@ -436,7 +457,10 @@ namespace fdparticle
   Vector<float> NavierStokesAssembler<dim>::particle_fraction(const DoFHandler<dim> &dof_handler) const
   {
     Vector<float> fraction(dof_handler.get_triangulation().n_active_cells());
-    FEValues<dim> fv(mapping, fe, quadrature.cut_rule(), update_quadrature_points | update_JxW_values);
+    const UpdateFlags flags = update_quadrature_points | update_JxW_values;
+    FEValues<dim> fe_regular(mapping, fe, quadrature.regular_rule(), flags);
+    FEValues<dim> fe_cut(mapping, fe, quadrature.cut_rule(), flags);
+    std::unique_ptr<FEValues<dim>>            fe_cell_specific;
     typename CutCellQuadrature<dim>::CellRule rule;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -447,6 +471,7 @@ namespace fdparticle
           fraction[cell->active_cell_index()] = 1;
         else if (rule.kind == CellKind::cut)
           {
+            FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
             fv.reinit(cell);
             quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
             double inside = 0, total = 0;

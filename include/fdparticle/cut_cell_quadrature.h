@@ -4,9 +4,12 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/hp/q_collection.h>
+#include <deal.II/non_matching/quadrature_generator.h>
 
 #include <fdparticle/particle_set.h>
 
+#include <memory>
 #include <vector>
 
 namespace fdparticle
@@ -40,6 +43,16 @@ namespace fdparticle
       int                     particle = -1; ///< the particle that meets the cell (first one)
       const Quadrature<dim> * quadrature = nullptr;
       std::vector<int>        owner;
+      /// A rule made for this cell alone (level set); quadrature then points here.
+      Quadrature<dim>         cell_specific;
+      bool                    owners_known = false;
+    };
+
+    /// How cut cells are integrated.
+    enum class Method
+    {
+      gauss,    ///< the seed's n-point Gauss rule, each point tested inside/outside
+      level_set ///< Saye's algorithm on the ball's level set |x − X|² − R² (deal.II 9.4)
     };
 
     static void declare_parameters(ParameterHandler &prm);
@@ -48,6 +61,7 @@ namespace fdparticle
     const Quadrature<dim> &regular_rule() const { return regular; }
     const Quadrature<dim> &cut_rule() const { return cut; }
     unsigned int           cut_points_per_direction() const { return n_cut_points; }
+    Method                 method() const { return cut_method; }
 
     /// Which particles meet the cell: fluid, inside or cut (by the cell's vertices and box).
     CellKind classify(const typename Triangulation<dim>::cell_iterator &cell,
@@ -60,14 +74,23 @@ namespace fdparticle
     void reinit(const typename Triangulation<dim>::cell_iterator &cell,
                 const ParticleSet<dim> &particles, CellRule &rule) const;
 
-    /// Set the owners once the real-space points of rule are known.
+    /// Set the owners once the real-space points of rule are known (Gauss rule only).
     void assign_owners(const std::vector<Point<dim>> &points,
                        const ParticleSet<dim> &particles, CellRule &rule) const;
 
   private:
+    /// Inside and outside rules of the ball k on an axis-aligned cell, mapped to the unit cell.
+    void generate_level_set_rule(const typename Triangulation<dim>::cell_iterator &cell,
+                                 const Particle<dim> &particle, const int k,
+                                 CellRule &rule) const;
+
+    Method         cut_method = Method::gauss;
     unsigned int   n_cut_points = 7;
+    unsigned int   level_set_order = 6;
     QGauss<dim>    regular{3};
     QGauss<dim>    cut{7};
+    hp::QCollection<1>                                     level_set_rules_1d;
+    std::unique_ptr<NonMatching::QuadratureGenerator<dim>> generator;
   };
 } // namespace fdparticle
 

@@ -1,0 +1,173 @@
+// Level-set cut-cell quadrature (Quadrature/Cut cells = level set): the ball's volume,
+// ∫|x − X|² and the moment about the z axis, integrated over the unit box meshed with N
+// cells a direction exactly as the assembler does it, against the exact values, for centres
+// at random points and on a mesh vertex, an edge midpoint and a face centre. Requirement
+// (issue "Smooth particle trajectories"): 1e-6 relative at the default order (6), and
+// better as the order rises. Measured: order 4 gives 1e-6 to 2e-6 in 3D, so 6 is the default.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <fdparticle/cut_cell_quadrature.h>
+#include <fdparticle/simulation.h>
+
+#include "unit_check.h"
+
+#include <iomanip>
+#include <random>
+#include <sstream>
+
+using namespace dealii;
+using namespace fdparticle;
+using namespace unit_check;
+
+namespace
+{
+  std::string sci(const double x)
+  {
+    std::ostringstream s;
+    s << std::scientific << std::setprecision(2) << x;
+    return s.str();
+  }
+
+  template <int dim>
+  std::string vec(const Point<dim> &p)
+  {
+    std::string s;
+    for (unsigned int d = 0; d < dim; ++d)
+      s += (d ? ", " : "") + std::to_string(p[d]);
+    return s;
+  }
+
+  /// Relative errors of volume, ∫|x−X|² and ∫(x−X)_⊥z² for one ball.
+  template <int dim>
+  std::array<double, 3> errors(const unsigned int N, const Point<dim> &X, const double R,
+                               const unsigned int order)
+  {
+    const std::string zero = (dim == 2 ? "0, 0" : "0, 0, 0");
+    const std::string one = (dim == 2 ? "1, 1" : "1, 1, 1");
+    std::string       n = std::to_string(N) + ", " + std::to_string(N);
+    if (dim == 3)
+      n += ", " + std::to_string(N);
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    prm.parse_input_from_string("set Dimension = " + std::to_string(dim) + "\nset Gravity = " +
+                                zero + "\nsubsection Geometry\n  set Lower corner = " + zero +
+                                "\n  set Upper corner = " + one + "\n  set Subdivisions = " + n +
+                                "\nend\nsubsection Particles\n  set Particles = " + vec(X) +
+                                " : " + std::to_string(R) +
+                                " : 1\nend\nsubsection Quadrature\n  set Cut cells = level set\n"
+                                "  set Level set order = " +
+                                std::to_string(order) + "\nend\n");
+    Domain<dim>            domain;
+    ParticleSet<dim>       particles;
+    CutCellQuadrature<dim> quadrature;
+    domain.parse_parameters(prm);
+    particles.parse_parameters(prm, domain);
+    quadrature.parse_parameters(prm);
+    parallel::distributed::Triangulation<dim> tria(MPI_COMM_WORLD);
+    domain.create_mesh(tria);
+
+    const MappingQ<dim> mapping(1);
+    const FE_Q<dim>     fe(1);
+    const UpdateFlags   flags = update_quadrature_points | update_JxW_values;
+    FEValues<dim>       regular(mapping, fe, quadrature.regular_rule(), flags);
+    typename CutCellQuadrature<dim>::CellRule rule;
+    double                                    I[3] = {0, 0, 0};
+    unsigned int                              n_generated = 0;
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        quadrature.reinit(cell, particles, rule);
+        std::unique_ptr<FEValues<dim>> own;
+        FEValues<dim> *fv = &regular;
+        if (rule.kind == CellKind::cut)
+          {
+            check(rule.quadrature == &rule.cell_specific && rule.owner.size() == rule.quadrature->size(),
+                  "a cut cell gets its own level-set rule", "");
+            own = std::make_unique<FEValues<dim>>(mapping, fe, *rule.quadrature, flags);
+            fv = own.get();
+            ++n_generated;
+          }
+        fv->reinit(cell);
+        quadrature.assign_owners(fv->get_quadrature_points(), particles, rule);
+        for (unsigned int q = 0; q < fv->n_quadrature_points; ++q)
+          if (rule.owner[q] == 0)
+            {
+              const Tensor<1, dim> r = fv->quadrature_point(q) - X;
+              I[0] += fv->JxW(q);
+              I[1] += r.norm_square() * fv->JxW(q);
+              I[2] += (r[0] * r[0] + r[1] * r[1]) * fv->JxW(q);
+            }
+      }
+    check(n_generated > 0, "the ball cuts cells", "");
+    const double V = RigidBody<dim>::volume(R);
+    // ∫|r|² = d/(d+2) V R²; about z: 2D the same, 3D 2/5 V R².
+    const double second = double(dim) / (dim + 2) * V * R * R;
+    const double axial = (dim == 2 ? second : 0.4 * V * R * R);
+    return {{std::abs(I[0] / V - 1), std::abs(I[1] / second - 1), std::abs(I[2] / axial - 1)}};
+  }
+
+  template <int dim>
+  void run()
+  {
+    // R/h = 2.4: a coarse resolution of a particle (the seed's sediment scene has 3.2).
+    const unsigned int N = 8;
+    const double       h = 1.0 / N, R = 0.3;
+    std::vector<std::pair<std::string, Point<dim>>> centres;
+    Point<dim> vertex, edge, face;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        vertex[d] = 4 * h;
+        edge[d] = vertex[d] + (d == 0 ? h / 2 : 0);
+        face[d] = vertex[d] + (d < dim - 1 ? h / 2 : 0);
+      }
+    centres.emplace_back("on a vertex", vertex);
+    centres.emplace_back("on an edge midpoint", edge);
+    if (dim == 3)
+      centres.emplace_back("on a face centre", face);
+    std::mt19937                           rng(12345);
+    std::uniform_real_distribution<double> u(0.35, 0.65);
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        Point<dim> p;
+        for (unsigned int d = 0; d < dim; ++d)
+          p[d] = u(rng);
+        centres.emplace_back("at random point " + std::to_string(i + 1), p);
+      }
+    const char *names[3] = {"volume", "int |r|^2", "moment about z"};
+    for (const auto &[where, X] : centres)
+      {
+        double previous = 1;
+        for (const unsigned int order : {2, 4, 6, 8})
+          {
+            const auto e = errors<dim>(N, X, R, order);
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                if (order == 6) // the default 'Level set order'
+                  check(e[i] < 1e-6, std::to_string(dim) + "D ball " + where + ", order 6: " +
+                                       names[i] + " relative error " + sci(e[i]) +
+                                       " < 1e-6");
+              }
+            const double worst = std::max({e[0], e[1], e[2]});
+            check(worst < previous || worst < 1e-12,
+                  std::to_string(dim) + "D ball " + where + ": order " + std::to_string(order) +
+                    " error " + sci(worst) + " below order " +
+                    std::to_string(order - 2) + "'s " + sci(previous));
+            previous = worst;
+          }
+      }
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  run<2>();
+  run<3>();
+  return summary();
+}
