@@ -60,7 +60,7 @@ namespace fdparticle
     particles_csv << "time,id,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz\n";
     statistics_csv.open(output_directory + "/statistics.csv");
     statistics_csv << "step,time,dt,cells,dofs,nonlinear_iterations,residual,wall_seconds,"
-                      "initial_residual,max_velocity,hydrostatic_deviation\n";
+                      "initial_residual,max_velocity,hydrostatic_deviation,coarse_cut_cells\n";
   }
 
   template <int dim>
@@ -97,7 +97,8 @@ namespace fdparticle
     statistics_csv << std::setprecision(10) << s.step << ',' << s.time << ',' << s.dt << ','
                    << s.cells << ',' << s.dofs << ',' << s.nonlinear_iterations << ','
                    << s.residual << ',' << s.wall_seconds << ',' << s.initial_residual << ','
-                   << s.max_velocity << ',' << s.hydrostatic_deviation << '\n';
+                   << s.max_velocity << ',' << s.hydrostatic_deviation << ','
+                   << s.coarse_cut_cells << '\n';
     statistics_csv.flush();
   }
 

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_dgp.h>
 #include <deal.II/fe/fe_q.h>
@@ -63,6 +64,7 @@ namespace fdparticle
     NavierStokesAssembler<3>::declare_parameters(prm);
     BorderedSystem::declare_parameters(prm);
     OutputWriter<3>::declare_parameters(prm);
+    ParticleRefinement<3>::declare_parameters(prm);
     declare_simulation_parameters(prm);
   }
 
@@ -86,6 +88,7 @@ namespace fdparticle
     assembler.parse_parameters(prm);
     system.parse_parameters(prm);
     output.parse_parameters(prm);
+    refinement.parse_parameters(prm);
     prm.enter_subsection("Solver");
     nonlinear_tolerance = prm.get_double("Nonlinear tolerance");
     max_nonlinear_iterations = prm.get_integer("Max nonlinear iterations");
@@ -163,6 +166,40 @@ namespace fdparticle
     pressure_reference_dof = Utilities::MPI::broadcast(comm, best_dof, root);
     pressure_reference_point = Utilities::MPI::broadcast(comm, best_center, root);
     assembler.set_pressure_reference(pressure_reference_point);
+  }
+
+  template <int dim>
+  void Simulation<dim>::adapt_mesh(const bool transfer)
+  {
+    // One pass refines or coarsens each cell by one level; a particle moves less than a
+    // cell per step, so after the initial passes one pass a step keeps up.
+    for (unsigned int pass = 0; pass <= refinement.levels(); ++pass)
+      {
+        if (!refinement.mark(triangulation, particles, base_level))
+          return;
+        TimerOutput::Scope t(*timer, "refinement");
+        triangulation.prepare_coarsening_and_refinement();
+        if (!transfer)
+          {
+            triangulation.execute_coarsening_and_refinement();
+            continue;
+          }
+        std::vector<TrilinosWrappers::MPI::Vector> ghosted(3, solution_ghost);
+        ghosted[0] = solution;
+        ghosted[1] = old_solution;
+        ghosted[2] = old_old_solution;
+        parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer_(
+          dof_handler);
+        transfer_.prepare_for_coarsening_and_refinement(
+          std::vector<const TrilinosWrappers::MPI::Vector *>{&ghosted[0], &ghosted[1], &ghosted[2]});
+        triangulation.execute_coarsening_and_refinement();
+        setup_dofs();
+        std::vector<TrilinosWrappers::MPI::Vector *> out{&solution, &old_solution,
+                                                          &old_old_solution};
+        transfer_.interpolate(out);
+        for (auto *v : out)
+          static_constraints.distribute(*v);
+      }
   }
 
   template <int dim>
@@ -415,6 +452,9 @@ namespace fdparticle
                                                 TimerOutput::wall_times);
     wall_start = wall_clock();
     domain.create_mesh(triangulation);
+    base_level = triangulation.n_global_levels() - 1;
+    if (refinement.enabled())
+      adapt_mesh(false);
     setup_dofs();
     make_constraints();
     setup_matrix();
@@ -447,6 +487,8 @@ namespace fdparticle
         stats.step = time.step_number() + 1;
         stats.dt = time.next_step();
         particles.prepare_step(time);
+        if (refinement.due(time.step_number()))
+          adapt_mesh(true);
         make_constraints();
         setup_matrix();
         solve_time_step(stats);
@@ -461,6 +503,8 @@ namespace fdparticle
         stats.dofs = dof_handler.n_dofs() + particles.n_unknowns();
         stats.max_velocity = max_velocity();
         stats.hydrostatic_deviation = hydrostatic_deviation();
+        if (refinement.enabled())
+          stats.coarse_cut_cells = refinement.coarse_cut_cells(triangulation, particles, base_level);
         write_output(output.vtu_due(time.step_number()));
         stats.wall_seconds = wall_clock() - step_start;
         output.write_statistics_row(stats);

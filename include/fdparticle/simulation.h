@@ -17,6 +17,7 @@
 #include <fdparticle/fluid.h>
 #include <fdparticle/navier_stokes_assembler.h>
 #include <fdparticle/output_writer.h>
+#include <fdparticle/particle_refinement.h>
 #include <fdparticle/particle_set.h>
 #include <fdparticle/time_stepper.h>
 
@@ -47,6 +48,8 @@ namespace fdparticle
 
   private:
     void   setup_dofs();
+    /// Refine around the particles (with transfer of the solution and its history).
+    void   adapt_mesh(const bool transfer);
     void   make_constraints();
     void   setup_matrix();
     void   set_initial_pressure();
@@ -67,6 +70,8 @@ namespace fdparticle
     TimeStepper            time;
     CutCellQuadrature<dim> quadrature;
     OutputWriter<dim>      output;
+    ParticleRefinement<dim> refinement;
+    unsigned int           base_level = 0;
     BorderedSystem         system;
 
     double       nonlinear_tolerance = 1e-10;

@@ -1,0 +1,110 @@
+#include <deal.II/base/mpi.h>
+
+#include <fdparticle/parameter_tools.h>
+#include <fdparticle/particle_refinement.h>
+
+namespace fdparticle
+{
+  template <int dim>
+  void ParticleRefinement<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Refinement");
+    {
+      prm.declare_entry("Particle refinement levels", "0", Patterns::Integer(0, 8),
+                        "Extra refinement levels around particle surfaces (0: uniform mesh).");
+      prm.declare_entry("Band width", "1", Patterns::Double(0),
+                        "Half-width of the refined band around each surface, in units of the "
+                        "local cell size.");
+      prm.declare_entry("Refinement interval", "1", Patterns::Integer(1),
+                        "Adapt the mesh to the particles every N steps.");
+    }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void ParticleRefinement<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Refinement");
+    n_levels = prm.get_integer("Particle refinement levels");
+    band_width = prm.get_double("Band width");
+    interval = prm.get_integer("Refinement interval");
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  bool ParticleRefinement<dim>::in_band(const typename Triangulation<dim>::cell_iterator &cell,
+                                        const ParticleSet<dim> &particles) const
+  {
+    // Distance from the surface |x − X| = R to the cell's box, against band × diameter.
+    const auto   box = cell->bounding_box();
+    const double h = cell->diameter() / std::sqrt(double(dim));
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &p = particles[k];
+        double near2 = 0, far2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double c = p.geometry_center[d], lo = box.lower_bound(d),
+                         hi = box.upper_bound(d);
+            const double n = std::max({lo - c, 0.0, c - hi});
+            const double f = std::max(std::abs(c - lo), std::abs(c - hi));
+            near2 += n * n;
+            far2 += f * f;
+          }
+        const double margin = band_width * h;
+        if (std::sqrt(near2) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
+          return true;
+      }
+    return false;
+  }
+
+  template <int dim>
+  bool ParticleRefinement<dim>::mark(parallel::distributed::Triangulation<dim> &triangulation,
+                                     const ParticleSet<dim> &particles,
+                                     const unsigned int      base_level) const
+  {
+    bool changed = false;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          // Coarsen only where the parent would not be refined again: a child can leave
+          // the band (its own margin is smaller) while its parent is still in it, and the
+          // mesh would flip between the two every step.
+          if (in_band(cell, particles))
+            {
+              if (cell->level() < int(base_level + n_levels))
+                {
+                  cell->set_refine_flag();
+                  changed = true;
+                }
+            }
+          else if (cell->level() > int(base_level) && !in_band(cell->parent(), particles))
+            {
+              cell->set_coarsen_flag();
+              changed = true;
+            }
+        }
+    return Utilities::MPI::logical_or(changed, triangulation.get_communicator());
+  }
+
+  template <int dim>
+  unsigned int ParticleRefinement<dim>::coarse_cut_cells(
+    const parallel::distributed::Triangulation<dim> &triangulation,
+    const ParticleSet<dim> &particles, const unsigned int base_level) const
+  {
+    unsigned int n = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->level() < int(base_level + n_levels))
+        for (unsigned int k = 0; k < particles.size(); ++k)
+          {
+            bool inside = false, outside = false;
+            for (const unsigned int v : cell->vertex_indices())
+              (particles[k].contains(cell->vertex(v)) ? inside : outside) = true;
+            n += (inside && outside);
+          }
+    return Utilities::MPI::sum(n, triangulation.get_communicator());
+  }
+
+  template class ParticleRefinement<2>;
+  template class ParticleRefinement<3>;
+} // namespace fdparticle
