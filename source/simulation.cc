@@ -492,6 +492,7 @@ namespace fdparticle
         make_constraints();
         setup_matrix();
         solve_time_step(stats);
+        smoothness.record(particles);
         particles.finish_step(time);
         time.advance();
         particles.check_positions(domain, time.time());
@@ -514,6 +515,7 @@ namespace fdparticle
               << std::defaultfloat << "  DoFs " << stats.dofs << "  " << std::setprecision(3)
               << stats.wall_seconds << " s" << std::endl;
       }
+    smoothness.write(output.directory(), pcout, Utilities::MPI::this_mpi_process(comm) == 0);
     pcout << "fdparticle: done in " << std::setprecision(4) << wall_clock() - wall_start
           << " s; output in " << output.directory() << std::endl;
     timer->print_summary();

@@ -19,6 +19,7 @@
 #include <fdparticle/output_writer.h>
 #include <fdparticle/particle_refinement.h>
 #include <fdparticle/particle_set.h>
+#include <fdparticle/smoothness_meter.h>
 #include <fdparticle/time_stepper.h>
 
 #include <memory>
@@ -71,6 +72,7 @@ namespace fdparticle
     CutCellQuadrature<dim> quadrature;
     OutputWriter<dim>      output;
     ParticleRefinement<dim> refinement;
+    SmoothnessMeter<dim>   smoothness;
     unsigned int           base_level = 0;
     BorderedSystem         system;
 
