@@ -39,13 +39,6 @@ using namespace unit_check;
 namespace
 {
 
-  std::string sci(const double x)
-  {
-    std::ostringstream s;
-    s << std::scientific << std::setprecision(2) << x;
-    return s.str();
-  }
-
   /// Domain, particles and quadrature of the unit box [0,1]^dim with N cells a direction.
   template <int dim>
   struct Scene

@@ -28,12 +28,6 @@ using namespace unit_check;
 
 namespace
 {
-  std::string sci(const double x)
-  {
-    std::ostringstream s;
-    s << std::scientific << std::setprecision(2) << x;
-    return s.str();
-  }
 
   template <int dim>
   std::string vec(const Point<dim> &p)

@@ -7,6 +7,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -44,6 +45,14 @@ namespace unit_check
     s.precision(17);
     s << "got " << value << ", expected " << expected << ", tol " << tol;
     check((value - expected).norm() <= tol, what, s.str());
+  }
+
+  /// A number in short scientific notation, for messages.
+  inline std::string sci(const double x)
+  {
+    std::ostringstream s;
+    s << std::scientific << std::setprecision(2) << x;
+    return s.str();
   }
 
   /// Print the tally; 0 if every check passed (use as main's return value).
