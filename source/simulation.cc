@@ -343,7 +343,7 @@ namespace fdparticle
     stats.initial_residual = residual;
     const double target = nonlinear_tolerance * std::max(1.0, residual);
     unsigned int iteration = 0;
-    while (residual > target || (iteration == 0 && !fluid.convection && residual > nonlinear_tolerance))
+    while (residual > target)
       {
         AssertThrow(std::isfinite(residual),
                     ExcMessage("The residual is not finite at t = " +
