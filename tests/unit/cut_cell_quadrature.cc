@@ -49,25 +49,9 @@ namespace
 
     Scene(const unsigned int N, const std::string &particle_list, const unsigned int gauss = 7)
     {
-      const std::string zero = (dim == 2 ? "0, 0" : "0, 0, 0");
-      const std::string one = (dim == 2 ? "1, 1" : "1, 1, 1");
-      std::string       n = std::to_string(N) + ", " + std::to_string(N);
-      if (dim == 3)
-        n += ", " + std::to_string(N);
       ParameterHandler prm;
       declare_all_parameters(prm);
-      prm.parse_input_from_string("set Dimension = " + std::to_string(dim) +
-                                  "\n"
-                                  "set Gravity = " + zero +
-                                  "\n"
-                                  "subsection Geometry\n"
-                                  "  set Lower corner = " + zero + "\n" +
-                                  "  set Upper corner = " + one + "\n" +
-                                  "  set Subdivisions = " + n + "\n" +
-                                  "end\n"
-                                  "subsection Fluid\n"
-                                  "  set Body force = " + zero + "\n" +
-                                  "end\n"
+      prm.parse_input_from_string(unit_box_parameters<dim>(N) +
                                   "subsection Particles\n"
                                   "  set Particles = " + particle_list + "\n" +
                                   "end\n"

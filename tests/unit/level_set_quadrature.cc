@@ -43,18 +43,11 @@ namespace
   std::array<double, 3> errors(const unsigned int N, const Point<dim> &X, const double R,
                                const unsigned int order)
   {
-    const std::string zero = (dim == 2 ? "0, 0" : "0, 0, 0");
-    const std::string one = (dim == 2 ? "1, 1" : "1, 1, 1");
-    std::string       n = std::to_string(N) + ", " + std::to_string(N);
-    if (dim == 3)
-      n += ", " + std::to_string(N);
     ParameterHandler prm;
     declare_all_parameters(prm);
-    prm.parse_input_from_string("set Dimension = " + std::to_string(dim) + "\nset Gravity = " +
-                                zero + "\nsubsection Geometry\n  set Lower corner = " + zero +
-                                "\n  set Upper corner = " + one + "\n  set Subdivisions = " + n +
-                                "\nend\nsubsection Particles\n  set Particles = " + vec(X) +
-                                " : " + std::to_string(R) +
+    prm.parse_input_from_string(unit_box_parameters<dim>(N) +
+                                "subsection Particles\n  set Particles = " + vec(X) + " : " +
+                                std::to_string(R) +
                                 " : 1\nend\nsubsection Quadrature\n  set Cut cells = level set\n"
                                 "  set Level set order = " +
                                 std::to_string(order) + "\nend\n");

@@ -55,6 +55,20 @@ namespace unit_check
     return s.str();
   }
 
+  /// Parameter text of a scene in the unit box [0,1]^dim with N cells a direction, no gravity.
+  template <int dim>
+  std::string unit_box_parameters(const unsigned int N)
+  {
+    const std::string zero = (dim == 2 ? "0, 0" : "0, 0, 0");
+    const std::string one = (dim == 2 ? "1, 1" : "1, 1, 1");
+    std::string       n = std::to_string(N) + ", " + std::to_string(N);
+    if (dim == 3)
+      n += ", " + std::to_string(N);
+    return "set Dimension = " + std::to_string(dim) + "\nset Gravity = " + zero +
+           "\nsubsection Geometry\n  set Lower corner = " + zero + "\n  set Upper corner = " + one +
+           "\n  set Subdivisions = " + n + "\nend\n";
+  }
+
   /// Print the tally; 0 if every check passed (use as main's return value).
   inline int summary()
   {
