@@ -35,19 +35,6 @@ namespace fdparticle
       const double     radius;
     };
 
-    /// Whether the ball of p meets the box: distance from its centre to the box below R.
-    template <int dim>
-    bool ball_meets_box(const Particle<dim> &p, const BoundingBox<dim> &box)
-    {
-      double dist2 = 0;
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          const double c = p.geometry_center[d];
-          const double e = std::max({box.lower_bound(d) - c, 0.0, c - box.upper_bound(d)});
-          dist2 += e * e;
-        }
-      return dist2 < p.radius * p.radius;
-    }
   } // namespace
 
   template <int dim>
@@ -97,7 +84,7 @@ namespace fdparticle
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         const Particle<dim> &p = particles[k];
-        if (!ball_meets_box(p, cell->bounding_box()))
+        if (p.distance_to(cell->bounding_box()) >= p.radius)
           continue;
         particle = k;
         bool all_inside = true;
@@ -125,7 +112,7 @@ namespace fdparticle
     // here describes one ball.
     unsigned int n_meeting = 0;
     for (unsigned int k = 0; k < particles.size(); ++k)
-      n_meeting += ball_meets_box(particles[k], cell->bounding_box());
+      n_meeting += (particles[k].distance_to(cell->bounding_box()) < particles[k].radius);
     if (n_meeting == 1)
       generate_level_set_rule(cell, particles[particle], particle, rule);
   }

@@ -41,18 +41,14 @@ namespace fdparticle
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         const Particle<dim> &p = particles[k];
-        double near2 = 0, far2 = 0;
+        // The box's farthest point from the centre: the far corner in every direction.
+        double far2 = 0;
         for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double c = p.geometry_center[d], lo = box.lower_bound(d),
-                         hi = box.upper_bound(d);
-            const double n = std::max({lo - c, 0.0, c - hi});
-            const double f = std::max(std::abs(c - lo), std::abs(c - hi));
-            near2 += n * n;
-            far2 += f * f;
-          }
+          far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
+                                    std::abs(p.geometry_center[d] - box.upper_bound(d))),
+                           2);
         const double margin = band_width * h;
-        if (std::sqrt(near2) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
+        if (p.distance_to(box) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
           return true;
       }
     return false;

@@ -136,8 +136,7 @@ namespace fdparticle
           for (unsigned int d = 0; d < dim; ++d)
             p.velocity[d] = y[p.first_unknown + d];
           for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
-            p.omega += (y[p.first_unknown + dim + j] - p.omega * RigidBody<dim>::rotation_axis(j)) *
-                       RigidBody<dim>::rotation_axis(j);
+            p.omega[RigidBody<dim>::rotation_component(j)] = y[p.first_unknown + dim + j];
         }
   }
 
@@ -151,7 +150,7 @@ namespace fdparticle
           for (unsigned int d = 0; d < dim; ++d)
             y[p.first_unknown + d] = p.velocity[d];
           for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
-            y[p.first_unknown + dim + j] = p.omega * RigidBody<dim>::rotation_axis(j);
+            y[p.first_unknown + dim + j] = p.omega[RigidBody<dim>::rotation_component(j)];
         }
     return y;
   }

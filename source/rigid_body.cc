@@ -9,7 +9,7 @@ namespace fdparticle
   {
     Assert(j < n_rotations, ExcIndexRange(j, 0, n_rotations));
     Tensor<1, 3> e;
-    e[dim == 2 ? 2 : j] = 1.0;
+    e[rotation_component(j)] = 1.0;
     return e;
   }
 

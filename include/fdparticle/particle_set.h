@@ -2,6 +2,7 @@
 #define fdparticle_particle_set_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -12,6 +13,8 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -60,6 +63,18 @@ namespace fdparticle
     bool   contains(const Point<dim> &x) const
     {
       return (x - geometry_center).norm_square() < radius * radius;
+    }
+    /// Distance from the centre to the nearest point of box (0 if the centre is inside).
+    double distance_to(const BoundingBox<dim> &box) const
+    {
+      double d2 = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double c = geometry_center[d];
+          const double e = std::max({box.lower_bound(d) - c, 0.0, c - box.upper_bound(d)});
+          d2 += e * e;
+        }
+      return std::sqrt(d2);
     }
   };
 

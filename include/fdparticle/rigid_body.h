@@ -23,6 +23,9 @@ namespace fdparticle
     /// Translational plus rotational unknowns of one free particle.
     static constexpr unsigned int n_unknowns = dim + n_rotations;
 
+    /// Which of ω's three components the rotational unknown j (0..n_rotations-1) is: z in 2D.
+    static unsigned int rotation_component(const unsigned int j) { return dim == 2 ? 2 : j; }
+
     /// The 3-vector of a rotational component j (0..n_rotations-1): e_z in 2D.
     static Tensor<1, 3> rotation_axis(const unsigned int j);
 
