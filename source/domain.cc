@@ -119,6 +119,13 @@ namespace fdparticle
   template <int dim>
   void Domain<dim>::create_mesh(parallel::distributed::Triangulation<dim> &tria) const
   {
+    create_coarse_mesh(tria);
+    tria.refine_global(global_refinements);
+  }
+
+  template <int dim>
+  void Domain<dim>::create_coarse_mesh(parallel::distributed::Triangulation<dim> &tria) const
+  {
     GridGenerator::subdivided_hyper_rectangle(tria, subdivisions, lower, upper,
                                               /*colorize=*/true);
     std::vector<GridTools::PeriodicFacePair<
@@ -129,7 +136,6 @@ namespace fdparticle
         GridTools::collect_periodic_faces(tria, 2 * d, 2 * d + 1, d, pairs);
     if (!pairs.empty())
       tria.add_periodicity(pairs);
-    tria.refine_global(global_refinements);
   }
 
   template <int dim>

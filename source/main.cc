@@ -32,6 +32,10 @@ namespace
       {
         simulation.run();
       }
+    catch (fdparticle::CollectiveError &)
+      {
+        throw; // every rank has it: end normally, rank 0 prints it
+      }
     catch (std::exception &exc)
       {
         if (Utilities::MPI::n_mpi_processes(comm) == 1)

@@ -42,7 +42,7 @@ namespace fdparticle
     prm.enter_subsection("Multiplier");
     {
       prm.declare_entry("Fluid penalty", "0.01", Patterns::Anything(),
-                        "s >= 0 in the term s*(alpha + mu/R^2)*int(lambda.eta) over the fluid part of cut "
+                        "s >= 0 in the term s*alpha^2/(alpha + mu/R^2)*int(lambda.eta) over the fluid part of cut "
                         "cells (the seed's weak lambda = 0 in the fluid, 3.18a). It keeps the "
                         "rows of multipliers that barely meet a particle well posed.");
       prm.declare_entry("Interior pressure penalty", "1", Patterns::Anything(),
@@ -299,10 +299,13 @@ namespace fdparticle
             else if (penalise)
               {
                 // Weak λ = 0 on the fluid part of a cut cell (seed 3.18a), weighted by
-                // α + μ/R²: the pairing's size on the scale of the particle, so that the weight
-                // stays finite for large Δt and does not change with h (doc/method.md).
+                // α²/(α + μ/R²). The rigid mode of λ carries the particle's force through
+                // α∫λ, so it grows like 1/α; a weight that does not vanish like α² for
+                // α ≪ μ/R² lets the particle leak in proportion to Δt (weight α + μ/R²:
+                // settling 10x too fast at Δt = 1). For α ≫ μ/R² the weight is sα, a fixed
+                // fraction of the pairing (doc/method.md, "Fluid penalty").
                 const double R = particles[rule.particle].radius;
-                const double s = fluid_penalty * (alpha + mu / (R * R)) * JxW;
+                const double s = fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * JxW;
                 for (const unsigned int a : l_dofs)
                   {
                     cell_rhs(a) += s * l[q][comp[a]] * N[a];

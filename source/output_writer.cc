@@ -7,6 +7,8 @@
 
 #include <filesystem>
 #include <iomanip>
+#include <istream>
+#include <ostream>
 
 namespace fdparticle
 {
@@ -34,8 +36,31 @@ namespace fdparticle
                 ExcMessage("Parameter 'Output/Directory' must not be empty."));
   }
 
+  namespace
+  {
+    /// Keep the header and the rows whose first field is at most 'last'; used on restart.
+    void truncate_table(const std::string &file, const double last)
+    {
+      std::ifstream            in(file);
+      std::vector<std::string> kept;
+      std::string              line;
+      while (std::getline(in, line))
+        if (kept.empty() || std::stod(line.substr(0, line.find(','))) <=
+                              last + 1e-9 * std::max(1.0, std::abs(last)))
+          kept.push_back(line);
+      in.close();
+      std::ofstream out(file + ".tmp");
+      for (const auto &l : kept)
+        out << l << '\n';
+      out.close();
+      std::filesystem::rename(file + ".tmp", file);
+    }
+  } // namespace
+
   template <int dim>
-  void OutputWriter<dim>::initialize(const ParameterHandler &prm, const MPI_Comm communicator)
+  void OutputWriter<dim>::initialize(const ParameterHandler &prm, const MPI_Comm communicator,
+                                     const bool resume, const unsigned int resume_step,
+                                     const double resume_time)
   {
     comm = communicator;
     root = (Utilities::MPI::this_mpi_process(comm) == 0);
@@ -47,6 +72,11 @@ namespace fdparticle
         if (ec || !std::filesystem::is_directory(output_directory))
           error = "Output directory '" + output_directory + "' cannot be created" +
                   (ec ? " (" + ec.message() + ")." : ".");
+        else if (resume)
+          for (const std::string name : {"particles.csv", "statistics.csv"})
+            if (!std::filesystem::exists(output_directory + "/" + name))
+              error = "Cannot resume: '" + output_directory + "/" + name +
+                      "' of the interrupted run is missing.";
       }
     error = Utilities::MPI::broadcast(comm, error, 0);
     AssertThrow(error.empty(), ExcMessage(error));
@@ -56,11 +86,48 @@ namespace fdparticle
     std::ofstream prm_out(output_directory + "/parameters.prm");
     prm.print_parameters(prm_out, ParameterHandler::PRM);
 
-    particles_csv.open(output_directory + "/particles.csv");
-    particles_csv << "time,id,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz\n";
-    statistics_csv.open(output_directory + "/statistics.csv");
+    const std::string particles_file = output_directory + "/particles.csv";
+    const std::string statistics_file = output_directory + "/statistics.csv";
+    if (resume)
+      {
+        truncate_table(particles_file, resume_time);
+        truncate_table(statistics_file, resume_step);
+        particles_csv.open(particles_file, std::ios::app);
+        statistics_csv.open(statistics_file, std::ios::app);
+        return;
+      }
+    particles_csv.open(particles_file);
+    particles_csv << "time,id,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz,"
+                     "contact_fx,contact_fy,contact_fz\n";
+    statistics_csv.open(statistics_file);
     statistics_csv << "step,time,dt,cells,dofs,nonlinear_iterations,residual,wall_seconds,"
-                      "initial_residual,max_velocity,hydrostatic_deviation,coarse_cut_cells\n";
+                      "initial_residual,max_velocity,hydrostatic_deviation,coarse_cut_cells,"
+                      "time_step_reductions,mean_vx,mean_vy,mean_vz\n";
+  }
+
+  template <int dim>
+  void OutputWriter<dim>::save(std::ostream &out) const
+  {
+    out << std::setprecision(17);
+    for (const auto *records : {&solution_records, &particle_records})
+      {
+        out << records->size() << '\n';
+        for (const auto &r : *records)
+          out << r.first << ' ' << r.second << '\n';
+      }
+  }
+
+  template <int dim>
+  void OutputWriter<dim>::load(std::istream &in)
+  {
+    for (auto *records : {&solution_records, &particle_records})
+      {
+        std::size_t n = 0;
+        in >> n;
+        records->resize(n);
+        for (auto &r : *records)
+          in >> r.first >> r.second;
+      }
   }
 
   template <int dim>
@@ -81,7 +148,7 @@ namespace fdparticle
         };
         particles_csv << time << ',' << P.id;
         for (const auto &v : {three(P.position), three(P.velocity), three(P.omega),
-                              three(P.force), three(P.torque)})
+                              three(P.force), three(P.torque), three(P.contact_force)})
           for (const double x : v)
             particles_csv << ',' << x;
         particles_csv << '\n';
@@ -98,7 +165,9 @@ namespace fdparticle
                    << s.cells << ',' << s.dofs << ',' << s.nonlinear_iterations << ','
                    << s.residual << ',' << s.wall_seconds << ',' << s.initial_residual << ','
                    << s.max_velocity << ',' << s.hydrostatic_deviation << ','
-                   << s.coarse_cut_cells << '\n';
+                   << s.coarse_cut_cells << ',' << s.time_step_reductions << ','
+                   << s.mean_velocity[0] << ',' << s.mean_velocity[1] << ','
+                   << s.mean_velocity[2] << '\n';
     statistics_csv.flush();
   }
 

@@ -1,6 +1,10 @@
 #include <fdparticle/parameter_tools.h>
 #include <fdparticle/particle_set.h>
 
+#include <iomanip>
+#include <istream>
+#include <ostream>
+
 namespace fdparticle
 {
   template <int dim>
@@ -100,7 +104,7 @@ namespace fdparticle
                       ExcMessage(what + (domain.is_periodic(d) ?
                                            " crosses a periodic boundary of the box" :
                                            " overlaps a wall of the box") +
-                                 when + (time == 0.0 ? "." : " (no particle-wall contact model yet).")));
+                                 when + (time == 0.0 ? "." : " (see subsection Wall repulsion).")));
         }
     for (unsigned int i = 0; i < particles.size(); ++i)
       for (unsigned int j = i + 1; j < particles.size(); ++j)
@@ -162,8 +166,7 @@ namespace fdparticle
     for (Particle<dim> &p : particles)
       {
         // BDF formula for dX/dt = V (Euler for BDF1, as the seed's eq. 3.19).
-        const Point<dim> x_new =
-          Point<dim>((p.velocity - c[1] * p.position - c[2] * p.position_old) / c[0]);
+        const Point<dim> x_new = p.position_after_step(c);
         p.position_old = p.position;
         p.position = x_new;
         p.orientation = RigidBody<dim>::rotate(p.orientation, p.omega, time.next_step());
@@ -171,6 +174,48 @@ namespace fdparticle
         p.velocity_old = p.velocity;
         p.omega_old2 = p.omega_old;
         p.omega_old = p.omega;
+      }
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::save(std::ostream &out) const
+  {
+    out << std::setprecision(17);
+    for (const Particle<dim> &p : particles)
+      {
+        for (const auto *t : {&p.position, &p.position_old})
+          for (unsigned int d = 0; d < dim; ++d)
+            out << (*t)[d] << ' ';
+        for (const auto *t : {&p.velocity, &p.velocity_old, &p.velocity_old2, &p.force,
+                              &p.contact_force})
+          for (unsigned int d = 0; d < dim; ++d)
+            out << (*t)[d] << ' ';
+        for (const auto *t : {&p.omega, &p.omega_old, &p.omega_old2, &p.torque})
+          for (unsigned int d = 0; d < 3; ++d)
+            out << (*t)[d] << ' ';
+        const auto &q = p.orientation.coeffs();
+        out << q[0] << ' ' << q[1] << ' ' << q[2] << ' ' << q[3] << '\n';
+      }
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::load(std::istream &in)
+  {
+    for (Particle<dim> &p : particles)
+      {
+        for (auto *t : {&p.position, &p.position_old})
+          for (unsigned int d = 0; d < dim; ++d)
+            in >> (*t)[d];
+        for (auto *t : {&p.velocity, &p.velocity_old, &p.velocity_old2, &p.force,
+                        &p.contact_force})
+          for (unsigned int d = 0; d < dim; ++d)
+            in >> (*t)[d];
+        for (auto *t : {&p.omega, &p.omega_old, &p.omega_old2, &p.torque})
+          for (unsigned int d = 0; d < 3; ++d)
+            in >> (*t)[d];
+        auto &q = p.orientation.coeffs();
+        in >> q[0] >> q[1] >> q[2] >> q[3];
+        p.geometry_center = p.position;
       }
   }
 

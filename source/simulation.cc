@@ -14,11 +14,26 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace fdparticle
 {
   namespace
   {
+    /// A Newton solve that did not converge: the step may be retried with a smaller Δt.
+    class NewtonFailure : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
+    };
+
+    std::string sci(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(3) << x;
+      return s.str();
+    }
+
     double wall_clock()
     {
       return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -65,6 +80,8 @@ namespace fdparticle
     BorderedSystem::declare_parameters(prm);
     OutputWriter<3>::declare_parameters(prm);
     ParticleRefinement<3>::declare_parameters(prm);
+    Checkpointer<3>::declare_parameters(prm);
+    WallRepulsion<3>::declare_parameters(prm);
     declare_simulation_parameters(prm);
   }
 
@@ -89,6 +106,8 @@ namespace fdparticle
     system.parse_parameters(prm);
     output.parse_parameters(prm);
     refinement.parse_parameters(prm);
+    checkpointer.parse_parameters(prm, output.directory());
+    repulsion.parse_parameters(prm);
     prm.enter_subsection("Solver");
     nonlinear_tolerance = prm.get_double("Nonlinear tolerance");
     max_nonlinear_iterations = prm.get_integer("Max nonlinear iterations");
@@ -336,6 +355,9 @@ namespace fdparticle
       TimerOutput::Scope t(*timer, with_matrix ? "assemble system" : "assemble residual");
       last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
                                           update_constraints, with_matrix, system);
+      if (repulsion.enabled())
+        repulsion.add_to_particle_rows(particles, c, system.r_p,
+                                       with_matrix ? &system.D : nullptr);
       return system.residual_norm();
     };
 
@@ -345,20 +367,31 @@ namespace fdparticle
     unsigned int iteration = 0;
     while (residual > target)
       {
-        AssertThrow(std::isfinite(residual),
-                    ExcMessage("The residual is not finite at t = " +
-                               std::to_string(time.time() + time.next_step()) + "."));
-        AssertThrow(iteration < max_nonlinear_iterations,
-                    ExcMessage("Newton did not converge in " +
-                               std::to_string(max_nonlinear_iterations) +
-                               " iterations at t = " +
-                               std::to_string(time.time() + time.next_step()) +
-                               " (residual " + std::to_string(residual) + ")."));
+        // Failures the step can be retried from (Simulation::do_time_step).
+        if (!std::isfinite(residual))
+          throw NewtonFailure("the residual is not finite (" + describe_residual() + ")");
+        if (residual > 1e6 * std::max(stats.initial_residual, target))
+          throw NewtonFailure("Newton diverges: the residual grew from " +
+                              sci(stats.initial_residual) + " to " + sci(residual) + " (" +
+                              describe_residual() + ")");
+        if (iteration >= max_nonlinear_iterations)
+          throw NewtonFailure("Newton did not converge in " +
+                              std::to_string(max_nonlinear_iterations) + " iterations (residual " +
+                              sci(residual) + " from " + sci(stats.initial_residual) + "; " +
+                              describe_residual() + ")");
         TrilinosWrappers::MPI::Vector dx;
         Eigen::VectorXd               dy;
         {
           TimerOutput::Scope t(*timer, "solve");
-          system.solve_newton_step(dx, dy);
+          try
+            {
+              system.solve_newton_step(dx, dy);
+            }
+          catch (const std::exception &e)
+            {
+              throw NewtonFailure("the linear solve failed: " +
+                                  ParameterTools::one_line_message(e));
+            }
           update_constraints.distribute(dx);
         }
         ++iteration;
@@ -381,6 +414,8 @@ namespace fdparticle
         if (!fluid.convection)
           {
             residual = assemble(false);
+            if (!std::isfinite(residual))
+              throw NewtonFailure("the residual is not finite (" + describe_residual() + ")");
             break; // Stokes: one linear solve per step
           }
         const double previous = residual;
@@ -445,12 +480,115 @@ namespace fdparticle
   }
 
   template <int dim>
-  void Simulation<dim>::run()
+  Tensor<1, 3> Simulation<dim>::mean_velocity() const
   {
-    // Created here, not in the constructor: an input error must not trigger its warnings.
-    timer = std::make_unique<TimerOutput>(comm, pcout, TimerOutput::never,
-                                                TimerOutput::wall_times);
-    wall_start = wall_clock();
+    // (1/|Ω|) ∫_Ω u: the superficial velocity of the periodic-array problems.
+    const FEValuesExtractors::Vector velocities(0);
+    QGauss<dim>                      q(3);
+    FEValues<dim> fv(assembler.get_mapping(), fe, q, update_values | update_JxW_values);
+    std::vector<Tensor<1, dim>> u(q.size());
+    double                      sums[dim + 1] = {};
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[velocities].get_function_values(solution_ghost, u);
+          for (unsigned int qp = 0; qp < q.size(); ++qp)
+            {
+              for (unsigned int d = 0; d < dim; ++d)
+                sums[d] += u[qp][d] * fv.JxW(qp);
+              sums[dim] += fv.JxW(qp);
+            }
+        }
+    Utilities::MPI::sum(ArrayView<const double>(sums, dim + 1), comm,
+                        ArrayView<double>(sums, dim + 1));
+    Tensor<1, 3> mean;
+    for (unsigned int d = 0; d < dim; ++d)
+      mean[d] = sums[d] / sums[dim];
+    return mean;
+  }
+
+  template <int dim>
+  std::string Simulation<dim>::describe_residual() const
+  {
+    // The largest entry of each block of the residual; non-finite entries win.
+    auto bigger = [](const double a, const double b) {
+      return !std::isfinite(a) || (std::isfinite(b) && a > b);
+    };
+    double       fe_max[3] = {0, 0, 0}; // momentum, rigidity (λ rows), continuity
+    for (const auto i : system.r_fe.locally_owned_elements())
+      {
+        const double       v = std::abs(system.r_fe[i]);
+        const unsigned int block =
+          velocity_dofs.is_element(i) ? 0 : (multiplier_dofs.is_element(i) ? 1 : 2);
+        if (bigger(v, fe_max[block]))
+          fe_max[block] = v;
+      }
+    for (double &m : fe_max)
+      m = Utilities::MPI::max(std::isfinite(m) ? m : std::numeric_limits<double>::max(), comm);
+    const char *fe_names[3] = {"the fluid momentum equation", "the rigidity constraint (lambda rows)",
+                               "the continuity equation"};
+    unsigned int which = 0;
+    for (unsigned int b = 1; b < 3; ++b)
+      if (fe_max[b] > fe_max[which])
+        which = b;
+    std::string where = fe_names[which];
+    double      largest = fe_max[which];
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &P = particles[k];
+        if (P.first_unknown == numbers::invalid_unsigned_int)
+          continue;
+        for (unsigned int j = 0; j < RigidBody<dim>::n_unknowns; ++j)
+          {
+            const double v = std::abs(system.r_p[P.first_unknown + j]);
+            if (!bigger(v, largest))
+              continue;
+            largest = std::isfinite(v) ? v : std::numeric_limits<double>::max();
+            where = "particle " + std::to_string(k + 1) + "'s " +
+                    (j < dim ? std::string("force balance (") + "xyz"[j] + ")" :
+                               std::string(particles.closure() == AngularVelocityClosure::kinematic ?
+                                             "angular-velocity closure (" :
+                                             "torque balance (") +
+                                 "xyz"[RigidBody<dim>::rotation_component(j - dim)] + ")");
+          }
+      }
+    std::ostringstream s;
+    s << "largest residual entry " << std::setprecision(3)
+      << (largest == std::numeric_limits<double>::max() ? std::string("non-finite") : sci(largest))
+      << " in " << where;
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      if (particles[k].first_unknown != numbers::invalid_unsigned_int)
+        s << "; particle " << k + 1 << " V = (" << particles[k].velocity << ")";
+    return s.str();
+  }
+
+  template <int dim>
+  void Simulation<dim>::check_resolution()
+  {
+    // The ball must span cells for λ to see it; below one cell per radius it is a blur.
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &P = particles[k];
+        double               h = std::numeric_limits<double>::max();
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              cell->center().distance(P.position) < P.radius + cell->diameter())
+            h = std::min(h, cell->minimum_vertex_distance());
+        h = Utilities::MPI::min(h, comm);
+        if (P.radius < h)
+          pcout << "Warning: particle " << k + 1 << " (radius " << P.radius
+                << ") is smaller than the cells around it (h = " << h << ", d/h = "
+                << std::setprecision(3) << 2 * P.radius / h
+                << "): it is under-resolved; refine with Geometry/Global refinements or "
+                   "Refinement/Particle refinement levels."
+                << std::endl;
+      }
+  }
+
+  template <int dim>
+  void Simulation<dim>::start()
+  {
     domain.create_mesh(triangulation);
     base_level = triangulation.n_global_levels() - 1;
     if (refinement.enabled())
@@ -464,14 +602,6 @@ namespace fdparticle
     old_solution = solution;
     old_old_solution = solution;
     output.initialize(prm, comm);
-
-    pcout << "fdparticle: " << dim << "D, " << triangulation.n_global_active_cells()
-          << " cells, " << dof_handler.n_dofs() << " finite-element DoFs + "
-          << particles.n_unknowns() << " particle unknowns, " << particles.size()
-          << " particle(s), " << time.scheme_name() << ", "
-          << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
-          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)" << std::endl;
-
     // t = 0: the state before the first step (forces are those of the fluid at rest).
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
@@ -479,23 +609,149 @@ namespace fdparticle
         particles[k].torque = Tensor<1, 3>();
       }
     write_output(output.vtu_due(0));
+  }
+
+  template <int dim>
+  void Simulation<dim>::resume()
+  {
+    std::string state;
+    try
+      {
+        state = checkpointer.read_state(comm, particles.size());
+      }
+    catch (const std::exception &e)
+      {
+        throw CollectiveError(ParameterTools::one_line_message(e));
+      }
+    TimerOutput::Scope t(*timer, "checkpoint");
+    domain.create_coarse_mesh(triangulation);
+    checkpointer.load_mesh(triangulation);
+    base_level = domain.n_global_refinements();
+    setup_dofs();
+    checkpointer.load_vectors(dof_handler, {&solution, &old_solution, &old_old_solution});
+    solution_ghost = solution;
+    std::istringstream in(state);
+    time.load(in);
+    particles.load(in);
+    smoothness.load(in);
+    output.load(in);
+    if (in.fail())
+      throw CollectiveError("The checkpoint in '" + checkpointer.directory() + "' is incomplete.");
+    output.initialize(prm, comm, true, time.step_number(), time.time());
+    pcout << "fdparticle: resumed from '" << checkpointer.directory() << "' at step "
+          << time.step_number() << ", t = " << time.time() << std::endl;
+  }
+
+  template <int dim>
+  void Simulation<dim>::write_checkpoint()
+  {
+    TimerOutput::Scope                         t(*timer, "checkpoint");
+    std::vector<TrilinosWrappers::MPI::Vector> ghosted(3, solution_ghost);
+    ghosted[0] = solution;
+    ghosted[1] = old_solution;
+    ghosted[2] = old_old_solution;
+    std::ostringstream state;
+    time.save(state);
+    particles.save(state);
+    smoothness.save(state);
+    output.save(state);
+    checkpointer.write(triangulation, dof_handler, {&ghosted[0], &ghosted[1], &ghosted[2]},
+                       particles.size(), state.str());
+  }
+
+  template <int dim>
+  void Simulation<dim>::do_time_step(StepStatistics &stats)
+  {
+    const ParticleSet<dim> accepted = particles;
+    if (refinement.due(time.step_number()))
+      adapt_mesh(true);
+    // Give up: keep the last good state (checkpoint, fields) and say why.
+    auto stop = [&](const std::string &why) {
+      particles = accepted;
+      solution = old_solution;
+      solution_ghost = solution;
+      write_checkpoint();
+      if (!output.vtu_due(time.step_number()))
+        write_output(true);
+      throw CollectiveError(
+        why + " The state at t = " + std::to_string(time.time()) + " (step " +
+        std::to_string(time.step_number()) + ") is in the checkpoint '" +
+        checkpointer.directory() + "' (resume with Checkpointing/Resume = true).");
+    };
+    for (;;)
+      {
+        stats.dt = time.next_step();
+        particles.prepare_step(time);
+        make_constraints();
+        setup_matrix();
+        std::string failure;
+        try
+          {
+            solve_time_step(stats);
+          }
+        catch (const NewtonFailure &e)
+          {
+            failure = e.what();
+          }
+        const std::string when = "At t = " + std::to_string(time.time() + time.next_step()) +
+                                 " (step " + std::to_string(time.step_number() + 1) +
+                                 ", dt = " + sci(time.next_step()) + ")";
+        if (failure.empty())
+          {
+            // Positions are checked before the step is accepted.
+            particles.finish_step(time);
+            try
+              {
+                particles.check_positions(domain, time.time() + time.next_step());
+              }
+            catch (const std::exception &e)
+              {
+                stop(ParameterTools::one_line_message(e));
+              }
+            return;
+          }
+        particles = accepted;
+        solution = old_solution;
+        solution_ghost = solution;
+        if (!time.reduce_step())
+          stop(when + ": " + failure +
+               "; the time step cannot be halved further (Time/Max time step reductions).");
+        pcout << "  " << when << ": " << failure << "; retrying with dt = " << time.next_step()
+              << std::endl;
+      }
+  }
+
+  template <int dim>
+  void Simulation<dim>::run()
+  {
+    // Created here, not in the constructor: an input error must not trigger its warnings.
+    timer = std::make_unique<TimerOutput>(comm, pcout, TimerOutput::never,
+                                                TimerOutput::wall_times);
+    wall_start = wall_clock();
+    if (checkpointer.resume())
+      resume();
+    else
+      start();
+    repulsion.initialize(domain, fluid, particles,
+                         domain.base_cell_size() / std::pow(2.0, refinement.levels()));
+
+    pcout << "fdparticle: " << dim << "D, " << triangulation.n_global_active_cells()
+          << " cells, " << dof_handler.n_dofs() << " finite-element DoFs + "
+          << particles.n_unknowns() << " particle unknowns, " << particles.size()
+          << " particle(s), " << time.scheme_name() << ", "
+          << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
+          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)" << std::endl;
+    check_resolution();
 
     while (!time.finished())
       {
         const double   step_start = wall_clock();
         StepStatistics stats;
         stats.step = time.step_number() + 1;
-        stats.dt = time.next_step();
-        particles.prepare_step(time);
-        if (refinement.due(time.step_number()))
-          adapt_mesh(true);
-        make_constraints();
-        setup_matrix();
-        solve_time_step(stats);
+        do_time_step(stats);
+        stats.time_step_reductions = time.reductions();
         smoothness.record(particles);
-        particles.finish_step(time);
         time.advance();
-        particles.check_positions(domain, time.time());
         old_old_solution = old_solution;
         old_solution = solution;
 
@@ -504,9 +760,12 @@ namespace fdparticle
         stats.dofs = dof_handler.n_dofs() + particles.n_unknowns();
         stats.max_velocity = max_velocity();
         stats.hydrostatic_deviation = hydrostatic_deviation();
+        stats.mean_velocity = mean_velocity();
         if (refinement.enabled())
           stats.coarse_cut_cells = refinement.coarse_cut_cells(triangulation, particles, base_level);
         write_output(output.vtu_due(time.step_number()));
+        if (checkpointer.due(time.step_number()) || (checkpointer.enabled() && time.finished()))
+          write_checkpoint();
         stats.wall_seconds = wall_clock() - step_start;
         output.write_statistics_row(stats);
         pcout << "step " << std::setw(5) << stats.step << "  t = " << std::setw(10)

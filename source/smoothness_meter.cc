@@ -3,6 +3,8 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <istream>
+#include <ostream>
 
 namespace fdparticle
 {
@@ -50,6 +52,37 @@ namespace fdparticle
     out << "id,smoothness,samples\n" << std::setprecision(10);
     for (unsigned int k = 0; k < history.size(); ++k)
       out << k << ',' << smoothness(k) << ',' << history[k].size() << '\n';
+  }
+
+  template <int dim>
+  void SmoothnessMeter<dim>::save(std::ostream &out) const
+  {
+    out << std::setprecision(17) << history.size() << '\n';
+    for (const auto &h : history)
+      {
+        out << h.size();
+        for (const auto &v : h)
+          for (unsigned int d = 0; d < dim; ++d)
+            out << ' ' << v[d];
+        out << '\n';
+      }
+  }
+
+  template <int dim>
+  void SmoothnessMeter<dim>::load(std::istream &in)
+  {
+    std::size_t n = 0;
+    in >> n;
+    history.assign(n, {});
+    for (auto &h : history)
+      {
+        std::size_t m = 0;
+        in >> m;
+        h.resize(m);
+        for (auto &v : h)
+          for (unsigned int d = 0; d < dim; ++d)
+            in >> v[d];
+      }
   }
 
   template class SmoothnessMeter<2>;

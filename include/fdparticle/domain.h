@@ -30,6 +30,8 @@ namespace fdparticle
 
     /// Build the (refined) base mesh and register periodic face pairs with p4est.
     void create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const;
+    /// The same without the global refinements: what a checkpoint's mesh is loaded onto.
+    void create_coarse_mesh(parallel::distributed::Triangulation<dim> &triangulation) const;
 
     /// Periodicity constraints on all components given in mask.
     void make_periodicity_constraints(const DoFHandler<dim> &    dof_handler,
@@ -53,6 +55,7 @@ namespace fdparticle
     const Point<dim> &   lower_corner() const { return lower; }
     const Point<dim> &   upper_corner() const { return upper; }
     double               volume() const;
+    unsigned int         n_global_refinements() const { return global_refinements; }
     /// The smallest base-mesh cell edge after the global refinements.
     double               base_cell_size() const;
     static std::string   face_name(const types::boundary_id face);

@@ -29,6 +29,10 @@ namespace fdparticle
     double       max_velocity = 0, hydrostatic_deviation = 0;
     /// Cells cut by a particle surface below the finest level (0 on a uniform mesh).
     unsigned int coarse_cut_cells = 0;
+    /// Halvings of the time step this step needed (issue 6 recovery).
+    unsigned int time_step_reductions = 0;
+    /// Volume average of the fluid velocity over the box (superficial velocity).
+    Tensor<1, 3> mean_velocity;
   };
 
   /**
@@ -44,8 +48,15 @@ namespace fdparticle
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
-    /// Create the directory, write parameters.prm and the table headers.
-    void initialize(const ParameterHandler &prm, const MPI_Comm comm);
+    /// Create the directory, write parameters.prm and the table headers. On a restart
+    /// (resume = true) the tables keep their rows up to the checkpoint's step and time,
+    /// the later ones (from the run that was interrupted) are dropped, and rows are appended.
+    void initialize(const ParameterHandler &prm, const MPI_Comm comm, const bool resume = false,
+                    const unsigned int resume_step = 0, const double resume_time = 0);
+
+    /// The ParaView record lists (.pvd), for checkpoints.
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
 
     bool vtu_due(const unsigned int step) const
     {

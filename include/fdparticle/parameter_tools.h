@@ -5,12 +5,24 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace fdparticle
 {
   using namespace dealii;
+
+  /**
+   * An error that every MPI rank detects alike and throws together (a run that cannot be
+   * continued, a checkpoint that does not fit the scene): the program then ends normally
+   * with a one-line message instead of aborting MPI.
+   */
+  class CollectiveError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
 
   /**
    * Parsing helpers shared by the classes that read parameters. Every error names the

@@ -14,7 +14,9 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -54,9 +56,17 @@ namespace fdparticle
     /// Hydrodynamic force (buoyancy included) and torque of the last step.
     Tensor<1, dim> force;
     Tensor<1, 3>   torque;
+    /// Wall repulsion of the last step (WallRepulsion), not part of 'force'.
+    Tensor<1, dim> contact_force;
 
     /// Offset of (V, ω) in the particle block; numbers::invalid_unsigned_int if not free.
     unsigned int first_unknown = numbers::invalid_unsigned_int;
+
+    /// X^{n+1} from the BDF formula for dX/dt = V with coefficients c (Euler for BDF1).
+    Point<dim> position_after_step(const std::array<double, 3> &c) const
+    {
+      return Point<dim>((velocity - c[1] * position - c[2] * position_old) / c[0]);
+    }
 
     double volume() const { return RigidBody<dim>::volume(radius); }
     double inertia() const { return RigidBody<dim>::inertia(radius); }
@@ -117,6 +127,11 @@ namespace fdparticle
      * results would be meaningless. Called after each step (and by parse_parameters).
      */
     void check_positions(const Domain<dim> &domain, const double time) const;
+
+    /// The state of every particle (positions, velocity histories, orientation, forces)
+    /// as exact text, for checkpoints; load() expects the same particles.
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
 
   private:
     std::vector<Particle<dim>> particles;

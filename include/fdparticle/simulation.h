@@ -12,6 +12,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <fdparticle/bordered_system.h>
+#include <fdparticle/checkpointer.h>
 #include <fdparticle/cut_cell_quadrature.h>
 #include <fdparticle/domain.h>
 #include <fdparticle/fluid.h>
@@ -21,6 +22,7 @@
 #include <fdparticle/particle_set.h>
 #include <fdparticle/smoothness_meter.h>
 #include <fdparticle/time_stepper.h>
+#include <fdparticle/wall_repulsion.h>
 
 #include <memory>
 
@@ -48,6 +50,17 @@ namespace fdparticle
     const ParticleSet<dim> &get_particles() const { return particles; }
 
   private:
+    /// Mesh, DoFs and initial state at t = 0, and the first output.
+    void   start();
+    /// Mesh, vectors and state from the last checkpoint (Checkpointing/Resume).
+    void   resume();
+    void   write_checkpoint();
+    /// Advance by one accepted step, retrying with smaller steps when Newton fails.
+    void   do_time_step(StepStatistics &stats);
+    /// Where the residual is largest, in words (for failure messages).
+    std::string describe_residual() const;
+    /// Warn about particles smaller than the cells they sit in.
+    void   check_resolution();
     void   setup_dofs();
     /// Refine around the particles (with transfer of the solution and its history).
     void   adapt_mesh(const bool transfer);
@@ -57,6 +70,7 @@ namespace fdparticle
     void   solve_time_step(StepStatistics &stats);
     void   update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals);
     double max_velocity() const;
+    Tensor<1, 3> mean_velocity() const;
     double hydrostatic_deviation() const;
     void   write_output(const bool fields);
 
@@ -73,6 +87,8 @@ namespace fdparticle
     OutputWriter<dim>      output;
     ParticleRefinement<dim> refinement;
     SmoothnessMeter<dim>   smoothness;
+    Checkpointer<dim>      checkpointer;
+    WallRepulsion<dim>     repulsion;
     unsigned int           base_level = 0;
     BorderedSystem         system;
 

@@ -6,6 +6,7 @@
 
 #include <fdparticle/particle_set.h>
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ namespace fdparticle
 
     /// Print one line per particle and write DIRECTORY/smoothness.csv (rank 0).
     void write(const std::string &directory, ConditionalOStream &pcout, const bool root) const;
+
+    /// The recorded history, for checkpoints (exact text).
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
 
   private:
     std::vector<std::vector<Tensor<1, dim>>> history; // [particle][step]

@@ -185,13 +185,42 @@ int main()
   try
     {
       test_constant_step();
-      // dt = 0.3, end = 1: levels 0, 0.3, 0.6, 0.9, 1.0; the last step is 0.1 (ω = 1/3).
-      test_variable_step("BDF2", 0.3, 1.0, {0.3, 0.3, 0.3, 0.1});
-      test_variable_step("BDF1", 0.3, 1.0, {0.3, 0.3, 0.3, 0.1});
+      // dt = 0.3, end = 1: the remainder 0.4 < 2 dt is shared by the last two steps
+      // (levels 0, 0.3, 0.6, 0.8, 1.0; ω = 2/3, then 1), not 0.3 + a sliver of 0.1.
+      test_variable_step("BDF2", 0.3, 1.0, {0.3, 0.3, 0.2, 0.2});
+      test_variable_step("BDF1", 0.3, 1.0, {0.3, 0.3, 0.2, 0.2});
+      // End time just above a whole number of steps: the last two share, no sliver.
+      test_variable_step("BDF2", 0.25, 1.01, {0.25, 0.25, 0.25, 0.13, 0.13});
       // 0.1 does not add up to 1.0 in floating point: still exactly 10 steps, no sliver step.
       test_variable_step("BDF2", 0.1, 1.0, std::vector<double>(10, 0.1));
       // Step larger than the whole interval: one shortened BDF1 step.
       test_variable_step("BDF2", 0.5, 0.2, {0.2});
+
+      std::cout << "Recovery: halving down to dt / 2^N, doubling back" << std::endl;
+      {
+        ParameterHandler prm;
+        TimeStepper::declare_parameters(prm);
+        prm.parse_input_from_string("subsection Time\n  set Time step = 0.4\n  set End time = 10\n"
+                                    "  set Max time step reductions = 2\nend\n");
+        TimeStepper time;
+        time.parse_parameters(prm);
+        check(time.reduce_step(), "first halving allowed");
+        check_close(time.next_step(), 0.2, 1e-15, "dt = 0.2 after one halving");
+        check(time.reduce_step(), "second halving allowed");
+        check_close(time.next_step(), 0.1, 1e-15, "dt = 0.1 after two halvings");
+        check(!time.reduce_step(), "a third halving is refused (0.4 / 2^2 is the floor)");
+        check(time.reductions() == 2, "two reductions counted");
+        time.advance();
+        check(time.reductions() == 0, "the count restarts with the next step");
+        check_close(time.next_step(), 0.2, 1e-15, "dt doubles back after an accepted step");
+        // Variable-step BDF2 with ω = 2: c = ((1+2ω)/(1+ω), −(1+ω), ω²/(1+ω)) / dt.
+        const auto c = time.coefficients();
+        check_close(c[0], 5.0 / 3.0 / 0.2, 1e-12, "c0 for ω = 2");
+        check_close(c[1], -3.0 / 0.2, 1e-12, "c1 for ω = 2");
+        check_close(c[2], 4.0 / 3.0 / 0.2, 1e-12, "c2 for ω = 2");
+        check(!time.reduce_step() || time.next_step() >= 0.1 - 1e-15,
+              "the floor is absolute: after regrowth, halving never goes below 0.1");
+      }
 
       std::cout << "End time 0: finished before any step" << std::endl;
       {
