@@ -1,0 +1,173 @@
+// Unit test of fdparticle::BorderedSystem (include/fdparticle/bordered_system.h): the
+// Newton correction from the Schur complement of the particle block must equal the solution
+// of the whole bordered system solved densely (Eigen, full-pivot LU), for every direct
+// solver and MUMPS ordering the parameter file can select.
+//
+// The finite-element block is a small saddle-point matrix like the real one: an
+// unsymmetric "velocity" block (convection-diffusion stencil) and "pressure" rows that
+// couple to velocity only, with no diagonal entry (so the solver has to pivot off the
+// diagonal). The bookkeeping of the factorization is checked too: a reinit() with the same
+// pattern keeps the symbolic factorization, new values need a new numeric one, and a new
+// pattern needs a new symbolic one.
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <fdparticle/bordered_system.h>
+
+#include "unit_check.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace dealii;
+using namespace fdparticle;
+using namespace unit_check;
+
+namespace
+{
+  constexpr unsigned int n_u = 40, n_p = 19, n = n_u + n_p, m = 3;
+
+  /// Pressure row k couples to the velocities k and k + 1 (a discrete divergence).
+  TrilinosWrappers::SparsityPattern make_pattern(const bool extra_entry)
+  {
+    const IndexSet                    all = complete_index_set(n);
+    TrilinosWrappers::SparsityPattern sp(all, all, MPI_COMM_WORLD);
+    for (unsigned int i = 0; i < n_u; ++i)
+      for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n_u - 1); ++j)
+        sp.add(i, j);
+    for (unsigned int k = 0; k < n_p; ++k)
+      {
+        sp.add(n_u + k, k);
+        sp.add(n_u + k, k + 1);
+        sp.add(k, n_u + k);
+        sp.add(k + 1, n_u + k);
+      }
+    if (extra_entry)
+      sp.add(0, n_u - 1);
+    sp.compress();
+    return sp;
+  }
+
+  /// Fill A, B, C, D and the residuals; 'shift' changes the values, not the pattern.
+  Eigen::MatrixXd fill(BorderedSystem &s, const double shift, const bool extra_entry)
+  {
+    s.zero(true);
+    Eigen::MatrixXd full = Eigen::MatrixXd::Zero(n + m, n + m);
+    auto set = [&](const unsigned int i, const unsigned int j, const double v) {
+      s.A.set(i, j, v);
+      full(i, j) = v;
+    };
+    for (unsigned int i = 0; i < n_u; ++i)
+      {
+        set(i, i, 2.5 + shift + 0.01 * i);
+        if (i > 0)
+          set(i, i - 1, -1.3);
+        if (i + 1 < n_u)
+          set(i, i + 1, -0.7);
+      }
+    for (unsigned int k = 0; k < n_p; ++k)
+      {
+        set(n_u + k, k, 1.0);
+        set(n_u + k, k + 1, -1.0 - 0.1 * shift);
+        set(k, n_u + k, -1.0);
+        set(k + 1, n_u + k, 1.0);
+      }
+    if (extra_entry)
+      set(0, n_u - 1, 0.05);
+    s.A.compress(VectorOperation::insert);
+    for (unsigned int j = 0; j < m; ++j)
+      for (unsigned int i = 0; i < n_u; ++i)
+        {
+          const double b = std::sin(1.0 + i + 7.0 * j), c = std::cos(2.0 + 3.0 * i + j);
+          s.B[j][i] = b;
+          s.C[j][i] = c;
+          full(i, n + j) = b;
+          full(n + j, i) = c;
+        }
+    for (unsigned int j = 0; j < m; ++j)
+      {
+        s.B[j].compress(VectorOperation::insert);
+        s.C[j].compress(VectorOperation::insert);
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      s.r_fe[i] = std::sin(0.3 * i) + shift;
+    s.r_fe.compress(VectorOperation::insert);
+    for (unsigned int i = 0; i < m; ++i)
+      {
+        s.r_p[i] = 0.5 - i;
+        for (unsigned int j = 0; j < m; ++j)
+          full(n + i, n + j) = s.D(i, j) = (i == j ? 4.0 : 0.3);
+      }
+    return full;
+  }
+
+  /// Max-norm difference between solve_newton_step() and the dense solution.
+  double error(BorderedSystem &s, const Eigen::MatrixXd &full)
+  {
+    Eigen::VectorXd rhs(n + m);
+    for (unsigned int i = 0; i < n; ++i)
+      rhs[i] = -s.r_fe[i];
+    rhs.tail(m) = -s.r_p;
+    const Eigen::VectorXd exact = full.fullPivLu().solve(rhs);
+
+    TrilinosWrappers::MPI::Vector x;
+    Eigen::VectorXd               y;
+    s.solve_newton_step(x, y);
+    double e = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      e = std::max(e, std::abs(x[i] - exact[i]));
+    for (unsigned int i = 0; i < m; ++i)
+      e = std::max(e, std::abs(y[i] - exact[n + i]));
+    return e / exact.lpNorm<Eigen::Infinity>();
+  }
+
+  void check_solver(const std::string &solver, const std::string &ordering)
+  {
+    const std::string what = solver + (solver == "Amesos_Mumps" ? " (" + ordering + ")" : "");
+    ParameterHandler  prm;
+    BorderedSystem::declare_parameters(prm);
+    prm.parse_input_from_string("subsection Solver\n"
+                                "  set Linear solver = " + solver + "\n"
+                                "  set MUMPS ordering = " + ordering + "\n"
+                                "end\n");
+    BorderedSystem s;
+    s.parse_parameters(prm);
+    const IndexSet all = complete_index_set(n);
+
+    s.reinit(all, all, make_pattern(false), MPI_COMM_WORLD, m);
+    Eigen::MatrixXd full = fill(s, 0.0, false);
+    check(error(s, full) < 1e-12, what + ": Newton step equals the dense solution");
+    // Same pattern again (as after a time step in which no constraint changed).
+    s.reinit(all, all, make_pattern(false), MPI_COMM_WORLD, m);
+    full = fill(s, 0.7, false);
+    check(error(s, full) < 1e-12, what + ": new values, same pattern");
+    const auto &st = s.direct_solver_statistics();
+    check(st.n_symbolic == 1 && st.n_numeric == 2,
+          what + ": the same pattern keeps the symbolic factorization",
+          std::to_string(st.n_symbolic) + " symbolic, " + std::to_string(st.n_numeric) +
+            " numeric");
+    // A second solve with the same values reuses the numeric factorization.
+    check(error(s, full) < 1e-12 && st.n_numeric == 2,
+          what + ": a second solve reuses the numeric factorization");
+    // A new pattern: a new symbolic factorization.
+    s.reinit(all, all, make_pattern(true), MPI_COMM_WORLD, m);
+    full = fill(s, 0.2, true);
+    check(error(s, full) < 1e-12 && st.n_symbolic == 2,
+          what + ": a new pattern gets a new symbolic factorization");
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  for (const std::string ordering : {"auto", "amd", "amf", "qamd", "pord", "metis"})
+    check_solver("Amesos_Mumps", ordering);
+  check_solver("Amesos_Klu", "auto");
+  return summary();
+}
