@@ -13,7 +13,7 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    (@TESTS@ in ARGS and in the prm: the tests/ directory)
   # test-compare: FILE [FILE ...]  compare output files with tests/NAME/FILE (CSV, numeric,
   # test-tolerance: REL ABS        |a-b| <= ABS + REL*|b|; wall_seconds is never compared)
-  # test-check: SCRIPT             run tests/SCRIPT OUTPUT_DIR; it exits non-zero on failure
+  # test-check: SCRIPT [ARGS]      run tests/SCRIPT OUTPUT_DIR [ARGS]; it exits non-zero on failure
   # test-restart-at: T             also run to End time T with checkpoints, then resume
                                    (Checkpointing/Resume = true) to the End time of the
                                    prm, after mimicking a kill during the last checkpoint
@@ -175,13 +175,15 @@ def main():
         if "test-restart-at" in d:
             failures += check_restart(opts, text, d, ranks, out_dir)
         if "test-check" in d:
-            script = os.path.join(HERE, d["test-check"])
-            check = subprocess.run([sys.executable, script, out_dir], capture_output=True, text=True,
+            script, *check_args = d["test-check"].split()
+            script = os.path.join(HERE, script)
+            check = subprocess.run([sys.executable, script, out_dir] + check_args,
+                                   capture_output=True, text=True,
                                    env=dict(os.environ, PYTHONPATH=HERE))
             sys.stdout.write(check.stdout)
             sys.stderr.write(check.stderr)
             if check.returncode != 0:
-                failures.append(f"check {d['test-check']} failed")
+                failures.append(f"check {d['test-check']} failed")  # noqa
 
     if len(outputs) > 1:
         tol = float(d.get("test-rank-tolerance", "1e-8"))
