@@ -441,32 +441,44 @@ namespace fdparticle
   }
 
   template <int dim>
-  double Simulation<dim>::hydrostatic_deviation() const
+  void Simulation<dim>::field_statistics(StepStatistics &stats) const
   {
-    // RMS over Ω of p − p_static minus its mean: zero for a fluid at hydrostatic rest.
+    // One pass over the cells for both field statistics of a step:
+    //  - RMS over Ω of p − p_static minus its mean (zero for a fluid at hydrostatic rest);
+    //  - (1/|Ω|) ∫_Ω u, the superficial velocity of the periodic-array problems.
     const FEValuesExtractors::Scalar pressure(2 * dim);
+    const FEValuesExtractors::Vector velocities(0);
     QGauss<dim>                      q(3);
     FEValues<dim> fv(assembler.get_mapping(), fe, q,
                      update_values | update_quadrature_points | update_JxW_values);
-    std::vector<double> p(q.size());
-    double              sums[3] = {0, 0, 0};
+    std::vector<double>         p(q.size());
+    std::vector<Tensor<1, dim>> u(q.size());
+    // ∫ e, ∫ e², |Ω|, ∫ u_d.
+    double               sums[3 + dim] = {};
     const Tensor<1, dim> grad = fluid.hydrostatic_gradient();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
           fv[pressure].get_function_values(solution_ghost, p);
+          fv[velocities].get_function_values(solution_ghost, u);
           for (unsigned int qp = 0; qp < q.size(); ++qp)
             {
               const double e = p[qp] - grad * (fv.quadrature_point(qp) - pressure_reference_point);
               sums[0] += e * fv.JxW(qp);
               sums[1] += e * e * fv.JxW(qp);
               sums[2] += fv.JxW(qp);
+              for (unsigned int d = 0; d < dim; ++d)
+                sums[3 + d] += u[qp][d] * fv.JxW(qp);
             }
         }
-    Utilities::MPI::sum(ArrayView<const double>(sums, 3), comm, ArrayView<double>(sums, 3));
+    Utilities::MPI::sum(ArrayView<const double>(sums, 3 + dim), comm,
+                        ArrayView<double>(sums, 3 + dim));
     const double mean = sums[0] / sums[2];
-    return std::sqrt(std::max(0.0, sums[1] / sums[2] - mean * mean));
+    stats.hydrostatic_deviation = std::sqrt(std::max(0.0, sums[1] / sums[2] - mean * mean));
+    stats.mean_velocity = Tensor<1, 3>();
+    for (unsigned int d = 0; d < dim; ++d)
+      stats.mean_velocity[d] = sums[3 + d] / sums[2];
   }
 
   template <int dim>
@@ -477,35 +489,6 @@ namespace fdparticle
     if (fields)
       output.write_fields(time.step_number(), time.time(), assembler.get_mapping(), dof_handler,
                           solution_ghost, assembler.particle_fraction(dof_handler), particles);
-  }
-
-  template <int dim>
-  Tensor<1, 3> Simulation<dim>::mean_velocity() const
-  {
-    // (1/|Ω|) ∫_Ω u: the superficial velocity of the periodic-array problems.
-    const FEValuesExtractors::Vector velocities(0);
-    QGauss<dim>                      q(3);
-    FEValues<dim> fv(assembler.get_mapping(), fe, q, update_values | update_JxW_values);
-    std::vector<Tensor<1, dim>> u(q.size());
-    double                      sums[dim + 1] = {};
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fv.reinit(cell);
-          fv[velocities].get_function_values(solution_ghost, u);
-          for (unsigned int qp = 0; qp < q.size(); ++qp)
-            {
-              for (unsigned int d = 0; d < dim; ++d)
-                sums[d] += u[qp][d] * fv.JxW(qp);
-              sums[dim] += fv.JxW(qp);
-            }
-        }
-    Utilities::MPI::sum(ArrayView<const double>(sums, dim + 1), comm,
-                        ArrayView<double>(sums, dim + 1));
-    Tensor<1, 3> mean;
-    for (unsigned int d = 0; d < dim; ++d)
-      mean[d] = sums[d] / sums[dim];
-    return mean;
   }
 
   template <int dim>
@@ -666,10 +649,14 @@ namespace fdparticle
     if (refinement.due(time.step_number()))
       adapt_mesh(true);
     // Give up: keep the last good state (checkpoint, fields) and say why.
-    auto stop = [&](const std::string &why) {
+    // Back to the state of the last accepted step.
+    auto roll_back = [&]() {
       particles = accepted;
       solution = old_solution;
       solution_ghost = solution;
+    };
+    auto stop = [&](const std::string &why) {
+      roll_back();
       write_checkpoint();
       if (!output.vtu_due(time.step_number()))
         write_output(true);
@@ -710,9 +697,7 @@ namespace fdparticle
               }
             return;
           }
-        particles = accepted;
-        solution = old_solution;
-        solution_ghost = solution;
+        roll_back();
         if (!time.reduce_step())
           stop(when + ": " + failure +
                "; the time step cannot be halved further (Time/Max time step reductions).");
@@ -759,8 +744,7 @@ namespace fdparticle
         stats.cells = triangulation.n_global_active_cells();
         stats.dofs = dof_handler.n_dofs() + particles.n_unknowns();
         stats.max_velocity = max_velocity();
-        stats.hydrostatic_deviation = hydrostatic_deviation();
-        stats.mean_velocity = mean_velocity();
+        field_statistics(stats);
         if (refinement.enabled())
           stats.coarse_cut_cells = refinement.coarse_cut_cells(triangulation, particles, base_level);
         write_output(output.vtu_due(time.step_number()));

@@ -29,17 +29,24 @@ namespace fdparticle
     using namespace ParameterTools;
     prm.enter_subsection("Wall repulsion");
     on = prm.get_bool("Enabled");
-    range_entry = trim(prm.get("Range"));
-    stiffness_entry = trim(prm.get("Stiffness"));
+    const std::string range = trim(prm.get("Range")), stiffness_text = trim(prm.get("Stiffness"));
     prm.leave_subsection();
-    if (range_entry != "auto")
-      AssertThrow(to_double(range_entry, "Wall repulsion/Range") > 0,
-                  ExcMessage("Parameter 'Wall repulsion/Range' must be positive or 'auto', got " +
-                             range_entry + "."));
-    if (stiffness_entry != "auto")
-      AssertThrow(to_double(stiffness_entry, "Wall repulsion/Stiffness") >= 0,
-                  ExcMessage("Parameter 'Wall repulsion/Stiffness' must not be negative, got " +
-                             stiffness_entry + "."));
+    range_entry = -1;
+    if (range != "auto")
+      {
+        range_entry = to_double(range, "Wall repulsion/Range");
+        AssertThrow(range_entry > 0,
+                    ExcMessage("Parameter 'Wall repulsion/Range' must be positive or 'auto', got " +
+                               range + "."));
+      }
+    stiffness_entry = -1;
+    if (stiffness_text != "auto")
+      {
+        stiffness_entry = to_double(stiffness_text, "Wall repulsion/Stiffness");
+        AssertThrow(stiffness_entry >= 0,
+                    ExcMessage("Parameter 'Wall repulsion/Stiffness' must not be negative, got " +
+                               stiffness_text + "."));
+      }
   }
 
   template <int dim>
@@ -47,18 +54,17 @@ namespace fdparticle
                                       const ParticleSet<dim> &particles,
                                       const double finest_cell_size)
   {
-    using namespace ParameterTools;
     lower = domain.lower_corner();
     upper = domain.upper_corner();
     for (unsigned int d = 0; d < dim; ++d)
       wall_direction[d] = !domain.is_periodic(d);
-    rho = (range_entry == "auto" ? finest_cell_size : to_double(range_entry, "Wall repulsion/Range"));
+    rho = (range_entry < 0 ? finest_cell_size : range_entry);
     stiffness.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
-      stiffness[k] = (stiffness_entry == "auto" ?
+      stiffness[k] = (stiffness_entry < 0 ?
                         100 * std::abs(particles[k].density - fluid.density) *
                           particles[k].volume() * fluid.gravity.norm() :
-                        to_double(stiffness_entry, "Wall repulsion/Stiffness"));
+                        stiffness_entry);
   }
 
   template <int dim>
@@ -82,16 +88,6 @@ namespace fdparticle
               }
           }
     return result;
-  }
-
-  template <int dim>
-  Tensor<1, dim> WallRepulsion<dim>::force(const unsigned int k, const Particle<dim> &P,
-                                           const Point<dim> &X) const
-  {
-    Tensor<1, dim> F;
-    for (const Contact &c : contacts(P, X))
-      F += stiffness[k] * (1 - c.gap / rho) * (1 - c.gap / rho) * c.normal;
-    return F;
   }
 
   template <int dim>

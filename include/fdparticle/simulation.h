@@ -70,8 +70,8 @@ namespace fdparticle
     void   solve_time_step(StepStatistics &stats);
     void   update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals);
     double max_velocity() const;
-    Tensor<1, 3> mean_velocity() const;
-    double hydrostatic_deviation() const;
+    /// hydrostatic_deviation and mean_velocity of stats, in one pass over the cells.
+    void   field_statistics(StepStatistics &stats) const;
     void   write_output(const bool fields);
 
     MPI_Comm            comm;

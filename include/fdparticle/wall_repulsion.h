@@ -45,11 +45,7 @@ namespace fdparticle
     void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
                     const ParticleSet<dim> &particles, const double finest_cell_size);
 
-    bool   enabled() const { return on; }
-    double range() const { return rho; }
-
-    /// The repulsion on particle k if its centre were at X.
-    Tensor<1, dim> force(const unsigned int k, const Particle<dim> &P, const Point<dim> &X) const;
+    bool enabled() const { return on; }
 
     /**
      * Subtract F(X^{n+1}(V)) from the force-balance rows of the free particles (their
@@ -60,7 +56,7 @@ namespace fdparticle
                               Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
 
   private:
-    /// Gap, inward normal and wall for every wall the ball at X is within range of.
+    /// Gap and inward normal for every wall the ball at X is within range of.
     struct Contact
     {
       double         gap;
@@ -69,7 +65,8 @@ namespace fdparticle
     std::vector<Contact> contacts(const Particle<dim> &P, const Point<dim> &X) const;
 
     bool                  on = true;
-    std::string           range_entry = "auto", stiffness_entry = "auto";
+    /// The entries as read; a negative value stands for 'auto'.
+    double                range_entry = -1, stiffness_entry = -1;
     double                rho = 0;
     std::vector<double>   stiffness; // K per particle
     Point<dim>            lower, upper;
