@@ -365,7 +365,8 @@ namespace fdparticle
     stats.initial_residual = residual;
     const double target = nonlinear_tolerance * std::max(1.0, residual);
     unsigned int iteration = 0;
-    while (residual > target)
+    // Written so that a NaN residual enters the loop (NaN > target is false) and is caught there.
+    while (!(residual <= target))
       {
         // Failures the step can be retried from (Simulation::do_time_step).
         if (!std::isfinite(residual))
