@@ -295,6 +295,7 @@ namespace fdparticle
       {
         Teuchos::ParameterList &mumps = parameters.sublist("mumps");
         mumps.set("ICNTL(7)", mumps_ordering_code(mumps_ordering));
+        mumps.set("ICNTL(14)", workspace_percent);
         if (mumps_ordering == "metis")
           {
             permutation = metis_nested_dissection(E, A.get_mpi_communicator());
@@ -321,8 +322,28 @@ namespace fdparticle
     if (!symbolic_done)
       factorize_symbolic();
     const auto start = std::chrono::steady_clock::now();
-    AssertThrow(solver->NumericFactorization() == 0,
-                ExcMessage(solver_type + ": the numeric factorization failed."));
+    // MUMPS sizes its work arrays from the analysis' estimate plus ICNTL(14) percent; with
+    // many delayed pivots (the saddle point) the estimate can be short (INFOG(1) = -9 at
+    // 2D h = 1/256). Then redo the analysis with four times the margin, up to three times.
+    for (int attempt = 0;; ++attempt)
+      {
+        if (solver->NumericFactorization() == 0)
+          break;
+        auto *    mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
+        const int info  = mumps ? mumps->GetINFOG()[0] : 0;
+        const bool short_of_space =
+          info == -8 || info == -9 || info == -14 || info == -15 || info == -17;
+        AssertThrow(short_of_space && attempt < 3,
+                    ExcMessage(solver_type + ": the numeric factorization failed" +
+                               (mumps ? " (MUMPS INFOG(1) = " + std::to_string(info) + ")" :
+                                        std::string()) +
+                               "."));
+        workspace_percent *= 4;
+        if (dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+          std::cout << "  direct solver: MUMPS ran out of working space (INFOG(1) = " << info
+                    << "); analysing again with ICNTL(14) = " << workspace_percent << std::endl;
+        factorize_symbolic();
+      }
     numeric_done = true;
     schur_done   = false; // Z and S belong to the previous values
     ++stats.n_numeric;

@@ -45,6 +45,12 @@ namespace fdparticle
                         "s >= 0 in the term s*alpha^2/(alpha + mu/R^2)*int(lambda.eta) over the fluid part of cut "
                         "cells (the seed's weak lambda = 0 in the fluid, 3.18a). It keeps the "
                         "rows of multipliers that barely meet a particle well posed.");
+      prm.declare_entry("Strain penalty", "0.05", Patterns::Anything(),
+                        "s_e >= 0 in the term s_e*mu*int(2 eps(lambda):eps(eta)) over the fluid "
+                        "part of cut cells. It softens the rigidity constraint of multipliers "
+                        "that lie mostly in the fluid (0: the cut cells lock, the particle acts "
+                        "O(h) too large) without touching the rigid modes of lambda, which "
+                        "carry force and torque (doc/method.md, 'Strain penalty').");
       prm.declare_entry("Interior pressure penalty", "1", Patterns::Anything(),
                         "delta >= 0 in the term (delta/mu)*int((p - p_hydrostatic) q) over cells "
                         "inside a particle. Inside a rigid body p and lambda are determined only "
@@ -62,6 +68,9 @@ namespace fdparticle
     fluid_penalty = ParameterTools::to_double(prm.get("Fluid penalty"), "Multiplier/Fluid penalty");
     AssertThrow(fluid_penalty >= 0,
                 ExcMessage("Parameter 'Multiplier/Fluid penalty' must not be negative."));
+    strain_penalty = ParameterTools::to_double(prm.get("Strain penalty"), "Multiplier/Strain penalty");
+    AssertThrow(strain_penalty >= 0,
+                ExcMessage("Parameter 'Multiplier/Strain penalty' must not be negative."));
     interior_pressure_penalty = ParameterTools::to_double(prm.get("Interior pressure penalty"),
                                                           "Multiplier/Interior pressure penalty");
     AssertThrow(interior_pressure_penalty >= 0,
@@ -148,7 +157,8 @@ namespace fdparticle
         fv[pres].get_function_values(solution, p);
         const bool has_particle =
           std::any_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; });
-        const bool penalise = (rule.kind == CellKind::cut && fluid_penalty > 0);
+        const bool penalise =
+          (rule.kind == CellKind::cut && (fluid_penalty > 0 || strain_penalty > 0));
         if (has_particle || penalise)
           {
             fv[lam].get_function_values(solution, l);
@@ -306,13 +316,23 @@ namespace fdparticle
                 // fraction of the pairing (doc/method.md, "Fluid penalty").
                 const double R = particles[rule.particle].radius;
                 const double s = fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * JxW;
+                const double se = (has_particle ? strain_penalty * mu * JxW : 0.0);
                 for (const unsigned int a : l_dofs)
                   {
-                    cell_rhs(a) += s * l[q][comp[a]] * N[a];
+                    const unsigned int ca = comp[a];
+                    cell_rhs(a) += s * l[q][ca] * N[a];
+                    if (se != 0)
+                      for (unsigned int j = 0; j < dim; ++j)
+                        cell_rhs(a) += se * (gl[q][ca][j] + gl[q][j][ca]) * dN[a][j];
                     if (with_matrix)
                       for (const unsigned int b : l_dofs)
-                        if (comp[a] == comp[b])
-                          cell_matrix(a, b) += s * N[a] * N[b];
+                        {
+                          const unsigned int cb = comp[b];
+                          double value = se * dN[a][cb] * dN[b][ca];
+                          if (ca == cb)
+                            value += s * N[a] * N[b] + se * (dN[a] * dN[b]);
+                          cell_matrix(a, b) += value;
+                        }
                   }
               }
           }

@@ -57,9 +57,12 @@ namespace fdparticle
     {
       const std::vector<std::string> pieces = split(text, ',');
       AssertThrow(pieces.size() == dim,
-                  ExcMessage("Parameter '" + entry + "' needs " + std::to_string(dim) +
-                             " comma-separated numbers (Dimension = " + std::to_string(dim) +
-                             "), got '" + trim(text) + "'."));
+                  ExcMessage("Parameter '" + entry + "' needs " +
+                             (dim == 1 ? std::string("1 number") :
+                                         std::to_string(dim) + " comma-separated numbers") +
+                             (dim == 1 ? std::string(" (in 2D an angular velocity is w_z alone)") :
+                                         " (Dimension = " + std::to_string(dim) + ")") +
+                             ", got '" + trim(text) + "'."));
       Tensor<1, dim> t;
       for (unsigned int d = 0; d < dim; ++d)
         t[d] = to_double(pieces[d], entry);
@@ -105,6 +108,7 @@ namespace fdparticle
       return line;
     }
 
+    template Tensor<1, 1> to_tensor<1>(const std::string &, const std::string &);
     template Tensor<1, 2> to_tensor<2>(const std::string &, const std::string &);
     template Tensor<1, 3> to_tensor<3>(const std::string &, const std::string &);
     template Tensor<1, 2> get_tensor<2>(const ParameterHandler &, const std::string &,

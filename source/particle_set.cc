@@ -13,8 +13,11 @@ namespace fdparticle
     prm.enter_subsection("Particles");
     {
       prm.declare_entry("Particles", "", Patterns::Anything(),
-                        "';'-separated entries 'x, y, z : radius : density [: free|fixed]' "
-                        "(2D: 'x, y : ...'). Empty: plain (Navier-)Stokes flow.");
+                        "';'-separated entries 'x, y, z : radius : density [: motion]' "
+                        "(2D: 'x, y : ...'), motion = free (default: force and torque "
+                        "balance), fixed, or 'prescribed : vx, vy, vz [: wx, wy, wz]' "
+                        "(constant velocity and angular velocity; 2D: 'vx, vy [: wz]'). "
+                        "Empty: plain (Navier-)Stokes flow.");
       prm.declare_entry("Angular velocity closure", "torque balance",
                         Patterns::Selection("torque balance|kinematic"),
                         "torque balance: (rho_k - rho_f) J dw/dt + <lambda, theta x r> = 0; "
@@ -43,10 +46,11 @@ namespace fdparticle
                         ExcMessage("Parameter '" + name +
                                    "' is empty; entries are 'x, y[, z] : radius : density'."));
             const std::vector<std::string> fields = split(entry, ':');
-            AssertThrow(fields.size() == 3 || fields.size() == 4,
+            const std::string form = "'centre : radius : density [: free | fixed | "
+                                     "prescribed : velocity [: angular velocity]]'";
+            AssertThrow(fields.size() >= 3 && fields.size() <= 6,
                         ExcMessage("Parameter '" + name + "': '" + entry +
-                                   "' is not of the form 'centre : radius : density "
-                                   "[: free|fixed]'."));
+                                   "' is not of the form " + form + "."));
             Particle<dim> p;
             p.id = particles.size();
             p.position = Point<dim>(to_tensor<dim>(fields[0], name + " centre"));
@@ -58,12 +62,38 @@ namespace fdparticle
             AssertThrow(p.density > 0, ExcMessage("Parameter '" + name +
                                                   "': the density must be positive, got " +
                                                   fields[2] + "."));
-            if (fields.size() == 4)
+            if (fields.size() >= 4)
               {
-                AssertThrow(fields[3] == "free" || fields[3] == "fixed",
-                            ExcMessage("Parameter '" + name + "': motion '" + fields[3] +
-                                       "' is neither 'free' nor 'fixed'."));
-                p.motion = (fields[3] == "fixed" ? ParticleMotion::fixed : ParticleMotion::free);
+                const std::string &motion = fields[3];
+                AssertThrow(motion == "free" || motion == "fixed" || motion == "prescribed",
+                            ExcMessage("Parameter '" + name + "': motion '" + motion +
+                                       "' is not 'free', 'fixed' or 'prescribed'."));
+                AssertThrow((motion == "prescribed") == (fields.size() >= 5),
+                            ExcMessage("Parameter '" + name + "': '" + entry + "': " +
+                                       (motion == "prescribed" ?
+                                          "'prescribed' needs a velocity after it" :
+                                          "only 'prescribed' takes a velocity") +
+                                       "; the form is " + form + "."));
+                p.motion = (motion == "fixed"      ? ParticleMotion::fixed :
+                            motion == "prescribed" ? ParticleMotion::prescribed :
+                                                     ParticleMotion::free);
+              }
+            if (p.motion == ParticleMotion::prescribed)
+              {
+                // Given (V, ω) are held in the velocity histories, so the BDF formula of
+                // finish_step() moves the ball with V exactly (constant V) and the
+                // assembler sees them as it sees a solved-for velocity.
+                p.velocity = to_tensor<dim>(fields[4], name + " velocity");
+                if (fields.size() == 6)
+                  {
+                    const Tensor<1, RigidBody<dim>::n_rotations> w =
+                      to_tensor<RigidBody<dim>::n_rotations>(fields[5],
+                                                             name + " angular velocity");
+                    for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
+                      p.omega[RigidBody<dim>::rotation_component(j)] = w[j];
+                  }
+                p.velocity_old = p.velocity_old2 = p.velocity;
+                p.omega_old = p.omega_old2 = p.omega;
               }
             p.position_old = p.position;
             p.geometry_center = p.position;
@@ -166,6 +196,7 @@ namespace fdparticle
     for (Particle<dim> &p : particles)
       {
         // BDF formula for dX/dt = V (Euler for BDF1, as the seed's eq. 3.19).
+        // A prescribed particle moves with its constant V; the history then holds V too.
         const Point<dim> x_new = p.position_after_step(c);
         p.position_old = p.position;
         p.position = x_new;

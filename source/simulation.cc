@@ -255,7 +255,7 @@ namespace fdparticle
     // The pattern follows the constraints of this step: constrained DoFs (inactive λ,
     // walls) keep only their diagonal, so the direct solver never sees the λ block away
     // from the particles. Couplings of formulation.md eqs. 1–3: u with everything, λ_i with u_i and λ_i
-    // (rigidity, fluid penalty), p with u; p with p only for the diagonal of the
+    // (rigidity, fluid penalty), λ_i with λ_j (strain penalty), p with u; p with p only for the diagonal of the
     // constrained pressure-level DoF (cell-local, so cheap).
     Table<2, DoFTools::Coupling> coupling(2 * dim + 1, 2 * dim + 1);
     for (unsigned int i = 0; i < 2 * dim + 1; ++i)
@@ -263,7 +263,9 @@ namespace fdparticle
         {
           const bool u_i = i < dim, u_j = j < dim, p_i = i == 2 * dim, p_j = j == 2 * dim;
           const bool same = (i % dim == j % dim) && !p_i && !p_j;
-          coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || (p_i && p_j) || same) ?
+          // The strain penalty couples the components of λ with each other.
+          const bool l_l = !u_i && !u_j && !p_i && !p_j;
+          coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || (p_i && p_j) || same || l_l) ?
                              DoFTools::always :
                              DoFTools::none;
         }

@@ -99,6 +99,9 @@ namespace fdparticle
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    solver;
     bool symbolic_done = false, numeric_done = false, schur_done = false;
+    /// MUMPS's ICNTL(14): extra working space in percent of its own estimate. Raised (and
+    /// kept) when a factorization runs out of it (INFOG(1) = -8, -9, -14, -15, -17).
+    int workspace_percent = 30;
     std::unique_ptr<Epetra_MultiVector>   Z;        // A⁻¹B of the current Jacobian
     Eigen::FullPivLU<Eigen::MatrixXd>     schur_lu; // LU of S = D − C A⁻¹ B
     std::vector<int>                      permutation; // user ordering for MUMPS (1-based)

@@ -89,6 +89,7 @@ namespace fdparticle
     const CutCellQuadrature<dim> &quadrature;
     MappingQ<dim>                 mapping{1};
     double                        fluid_penalty = 1.0;
+    double                        strain_penalty = 0.05;
     double                        interior_pressure_penalty = 1.0;
     Point<dim>                    pressure_reference;
   };

@@ -24,11 +24,14 @@ namespace fdparticle
 {
   using namespace dealii;
 
-  /// How a particle moves: by its force and torque balance, or not at all.
+  /// How a particle moves: by its force and torque balance, not at all, or with a given
+  /// constant velocity and angular velocity. Only free particles have particle equations;
+  /// the force and torque of all are reported.
   enum class ParticleMotion
   {
     free,
-    fixed
+    fixed,
+    prescribed
   };
 
   /// Closure for the angular velocity (formulation.md "Where this departs from the seed").
@@ -58,6 +61,9 @@ namespace fdparticle
     Tensor<1, 3>   torque;
     /// Wall repulsion of the last step (WallRepulsion), not part of 'force'.
     Tensor<1, dim> contact_force;
+
+    /// Is (V, ω) given rather than solved for?
+    bool kinematics_given() const { return motion != ParticleMotion::free; }
 
     /// Offset of (V, ω) in the particle block; numbers::invalid_unsigned_int if not free.
     unsigned int first_unknown = numbers::invalid_unsigned_int;

@@ -241,6 +241,22 @@ end
 
     // No particles at all: plain flow.
     Parsed<3> empty;
+    Parsed<3> moving;
+    parse<3>(base_3d + override_entry("Particles/Particles",
+                                      "0.5, 1, 1.5 : 0.2 : 2 : prescribed : 0, -0.5, 0 : 1, 2, 3 ;"
+                                      "0.5, 1, 2.5 : 0.2 : 2 : prescribed : 1, 0, 0"),
+             moving);
+    {
+      const auto &m = moving.particles;
+      check(m[0].motion == ParticleMotion::prescribed && m[1].motion == ParticleMotion::prescribed,
+            "'prescribed' parsed");
+      check(m.n_unknowns() == 0 && m[0].first_unknown == numbers::invalid_unsigned_int,
+            "prescribed particles have no particle unknowns");
+      check_close(m[0].velocity, Tensor<1, 3>({0, -0.5, 0}), "prescribed V");
+      check_close(m[0].velocity_old2, Tensor<1, 3>({0, -0.5, 0}), "prescribed V fills the history");
+      check_close(m[0].omega, Tensor<1, 3>({1, 2, 3}), "prescribed omega");
+      check_close(m[1].omega, Tensor<1, 3>(), "omega defaults to 0");
+    }
     parse<3>(base_3d + override_entry("Particles/Particles", ""), empty);
     check(empty.particles.empty() && empty.particles.n_unknowns() == 0, "empty particle list");
     // Touching the wall of a periodic direction is fine as long as it does not cross.
@@ -302,7 +318,14 @@ end
     check_rejected<3>(P, "0,1,0:0.2:1.5;;0,0,0:0.1:1", "(entry 2)' is empty");
     check_rejected<2>(P, "0, 1 : 0.2 : 1 ;", "(entry 2)' is empty");
     check_rejected<2>(P, "0, 1 : 0.2", "is not of the form");
-    check_rejected<2>(P, "0, 1 : 0.2 : 1 : stuck", "neither 'free' nor 'fixed'");
+    check_rejected<2>(P, "0, 1 : 0.2 : 1 : stuck", "is not 'free', 'fixed' or 'prescribed'");
+    check_rejected<2>(P, "0, 1 : 0.2 : 1 : prescribed", "'prescribed' needs a velocity");
+    check_rejected<2>(P, "0, 1 : 0.2 : 1 : fixed : 1, 0", "only 'prescribed' takes a velocity");
+    check_rejected<2>(P, "0, 1 : 0.2 : 1 : prescribed : 1, 0, 0", "velocity' needs 2");
+    check_rejected<2>(P, "0, 1 : 0.2 : 1 : prescribed : 1, 0 : 0, 1",
+                      "in 2D an angular velocity is w_z alone");
+    check_rejected<3>(P, "0.5, 1, 1.5 : 0.2 : 1 : prescribed : 0, 0, 1 : 2", "velocity' needs 3");
+    check_rejected<2>(P, "0, 1 : 0.2 : 1 : prescribed : 1, 0 : 1 : 2", "is not of the form");
     check_rejected<2>(P, "0, 1, 1 : 0.2 : 1", "needs 2");
     check_rejected<2>(P, "0, 1 : r : 1", "not a finite number");
 

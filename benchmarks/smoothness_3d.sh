@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Issue 3 evidence in 3D: the seed's sediment scene (prm/sediment.prm, 8 x 16 x 8, dt = 0.1)
+# and cavity scene (prm/cavity.prm, 10^3, dt = 0.01) in the variants
+#   seed      uniform mesh, 7-point Gauss in cut cells (the seed's method)
+#   levelset  uniform mesh, level-set cut-cell quadrature
+#   adaptive  2 particle refinement levels, 7-point Gauss
+#   adaptls   2 particle refinement levels, level-set quadrature
+# Each run checkpoints every 20 steps into a persistent work directory and resumes from
+# there when started again, so the long runs can be spread over several sessions.
+# After the runs, doc/smoothness_3d.csv (one row per run) and doc/smoothness_3d_*.png
+# (V_y(t) or omega_z(t) of every variant on one figure) are rewritten from whatever
+# the work directory holds (runs that have not reached their end are marked 'partial').
+#
+# Usage (regenerate):
+#   bash benchmarks/smoothness_3d.sh sediment:seed:100 sediment:levelset:100 cavity:seed:5 ...
+#   bash benchmarks/smoothness_3d.sh --report          (only the table and plots)
+# Each argument is SCENE:VARIANT:END_TIME. WORK=DIR overrides the work directory, EXE=PATH
+# the executable.
+set -uo pipefail
+top="$(cd "$(dirname "$0")/.." && pwd)"
+exe="${EXE:-$top/build/fdparticle}"
+work="${WORK:-$top/benchmarks/work/smoothness_3d}"
+mkdir -p "$work"
+[ -x "$exe" ] || bash "$top/scripts/build.sh"
+
+variant_settings() { # variant -> prm lines appended at the end (later entries win)
+  case $1 in
+    seed) printf 'subsection Quadrature\n  set Cut cells = gauss\n  set Gauss points in cut cells = 7\nend\n' ;;
+    levelset) printf 'subsection Quadrature\n  set Cut cells = level set\nend\n' ;;
+    adaptive) printf 'subsection Quadrature\n  set Cut cells = gauss\n  set Gauss points in cut cells = 7\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
+    long) variant_settings seed ;;  # issue 6: the seed variant continued to t = 1000
+    adaptls) printf 'subsection Quadrature\n  set Cut cells = level set\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
+    *) echo "unknown variant $1" >&2; exit 2 ;;
+  esac
+}
+
+run() { # scene variant end_time
+  local scene=$1 variant=$2 end=$3 dir="$work/$1_$2"
+  local prm="$dir.prm"
+  # The long run starts from the seed variant's last checkpoint when there is one.
+  if [ "$variant" = long ] && [ ! -d "$dir" ] && [ -d "$work/$1_seed/checkpoint" ]; then
+    cp -r "$work/$1_seed" "$dir"; cp "$work/$1_seed.log" "$dir.log"
+  fi
+  {
+    sed -e "s#^\(\s*set Directory\s*=\).*#\1 $dir#" -e "s/^\(\s*set End time\s*=\).*/\1 $end/" \
+        -e "s/^\(\s*set VTU interval\s*=\).*/\1 0/" "$top/prm/$scene.prm"
+    variant_settings "$variant"
+    local resume=false
+    [ -f "$dir/checkpoint/state.txt" ] || [ -f "$dir/checkpoint.old/state.txt" ] && resume=true
+    printf 'subsection Checkpointing\n  set Interval = 20\n  set Resume = %s\nend\n' "$resume"
+  } > "$prm"
+  echo "$(date +%T) $scene/$variant to t = $end (log $dir.log)"
+  "$exe" "$prm" >> "$dir.log" 2>&1
+  echo "$(date +%T) $scene/$variant: exit $?"
+}
+
+for spec in "$@"; do
+  [ "$spec" = --report ] && continue
+  IFS=: read -r scene variant end <<< "$spec"
+  run "$scene" "$variant" "$end"
+done
+
+# ---- Report --------------------------------------------------------------------------
+csv="$top/doc/smoothness_3d.csv"
+echo "scene,variant,t_end,steps,complete,smoothness,wall_seconds,dofs_first,dofs_last,newton_per_step,time_step_reductions" > "$csv"
+for dir in "$work"/*_*/; do
+  dir=${dir%/}; name=$(basename "$dir"); scene=${name%%_*}; variant=${name#*_}
+  [ -f "$dir/statistics.csv" ] || continue
+  end=$(sed -n 's/^\s*set End time\s*=\s*//p' "$dir.prm" | tail -1)
+  awk -F, -v scene="$scene" -v variant="$variant" -v end="$end" -v sfile="$dir/smoothness.csv" '
+    NR > 1 { n++; t = $2; w += $8; it += $6; h += $13; if (n == 1) d0 = $5; d1 = $5 }
+    END {
+      s = "";
+      if ((getline line < sfile) > 0 && (getline line < sfile) > 0) { split(line, f, ","); s = f[2] }
+      complete = (t >= end - 1e-9) ? "yes" : "partial";
+      if (complete != "yes") s = "";   # the meter writes only at the end of a run
+      printf "%s,%s,%g,%d,%s,%s,%.0f,%d,%d,%.2f,%d\n", scene, variant, t, n, complete, s, w, d0, d1, it / n, h
+    }' "$dir/statistics.csv" >> "$csv"
+done
+column -s, -t "$csv"
+
+plot() { # scene column label
+  local scene=$1 col=$2 label=$3 png="$top/doc/smoothness_3d_$1.png" cmd=""
+  for dir in "$work/${scene}"_*/; do
+    dir=${dir%/}; [ -f "$dir/particles.csv" ] || continue
+    [ "${dir##*_}" = long ] && continue
+    cmd+="${cmd:+, }'$dir/particles.csv' using 1:$col with lines title '$(basename "$dir" | sed 's/^[^_]*_//')'"
+  done
+  [ -n "$cmd" ] || return 0
+  gnuplot -e "set terminal pngcairo size 900,500; set output '$png'; set datafile separator ',';
+              set key autotitle columnhead; set xlabel 't'; set ylabel '$label';
+              set title '$scene (3D): $label of the particle'; set grid; plot $cmd" &&
+    echo "wrote $png"
+}
+plot sediment 7 'V_y'
+# Issue 6: the long run, height and velocity of the sphere to t = 1000.
+long="$work/sediment_long/particles.csv"
+[ -f "$long" ] && gnuplot -e "set terminal pngcairo size 900,600; set output '$top/doc/sediment_3d_long.png';
+  set datafile separator ','; set multiplot layout 2,1; set grid; set xlabel 't';
+  set ylabel 'y'; plot '$long' using 1:4 every ::1 with lines notitle;
+  set ylabel 'V_y'; plot '$long' using 1:7 every ::1 with lines notitle; unset multiplot" &&
+  echo "wrote $top/doc/sediment_3d_long.png"
+plot cavity 6 'V_x'
