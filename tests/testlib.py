@@ -21,3 +21,20 @@ def check(condition, message):
 
 def finish():
     sys.exit(1 if _failures else 0)
+
+
+def parameters(out_dir):
+    """The entries of OUT_DIR/parameters.prm (written by fdparticle) as
+    {'Subsection/Name': value}."""
+    values, path = {}, []
+    with open(f"{out_dir}/parameters.prm") as f:
+        for line in f:
+            line = line.split("#")[0].strip()
+            if line.startswith("subsection "):
+                path.append(line[len("subsection "):].strip())
+            elif line == "end":
+                path.pop()
+            elif line.startswith("set "):
+                name, value = line[4:].split("=", 1)
+                values["/".join(path + [name.strip()])] = value.strip()
+    return values

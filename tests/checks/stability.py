@@ -23,23 +23,7 @@ with this code, Delta t = 0.1, 7-point Gauss rule in cut cells). Modes:
 """
 import math
 import sys
-from testlib import table, check, finish
-
-
-def parameters(out):
-    """The entries of OUTPUT_DIR/parameters.prm as {'Subsection/Name': value}."""
-    values, path = {}, []
-    with open(f"{out}/parameters.prm") as f:
-        for line in f:
-            line = line.split("#")[0].strip()
-            if line.startswith("subsection "):
-                path.append(line[len("subsection "):].strip())
-            elif line == "end":
-                path.pop()
-            elif line.startswith("set "):
-                name, value = line[4:].split("=", 1)
-                values["/".join(path + [name.strip()])] = value.strip()
-    return values
+from testlib import table, check, finish, parameters
 
 
 out, mode = sys.argv[1], sys.argv[2]
