@@ -150,7 +150,6 @@ namespace fdparticle
   template <int dim>
   void Domain<dim>::make_wall_constraints(const DoFHandler<dim> &    dof_handler,
                                           const ComponentMask &      velocity_mask,
-                                          const ComponentMask &      zero_mask,
                                           const bool                 homogeneous,
                                           AffineConstraints<double> &constraints) const
   {
@@ -180,9 +179,6 @@ namespace fdparticle
             VectorTools::interpolate_boundary_values(dof_handler, f, zero, constraints,
                                                      velocity_mask);
         }
-    for (types::boundary_id f = 0; f < 2 * dim; ++f)
-      if (is_wall(f))
-        VectorTools::interpolate_boundary_values(dof_handler, f, zero, constraints, zero_mask);
   }
 
   template <int dim>

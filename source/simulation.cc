@@ -225,9 +225,8 @@ namespace fdparticle
   void Simulation<dim>::make_constraints()
   {
     TimerOutput::Scope t(*timer, "constraints");
-    const FEValuesExtractors::Vector velocities(0), multipliers(dim);
+    const FEValuesExtractors::Vector velocities(0);
     const ComponentMask              u_mask = fe.component_mask(velocities);
-    const ComponentMask              l_mask = fe.component_mask(multipliers);
     const IndexSet active = assembler.active_multiplier_dofs(dof_handler, relevant_dofs);
 
     for (const bool homogeneous : {true, false})
@@ -236,7 +235,7 @@ namespace fdparticle
         c.clear();
         c.reinit(relevant_dofs);
         c.merge(static_constraints);
-        domain.make_wall_constraints(dof_handler, u_mask, l_mask, homogeneous, c);
+        domain.make_wall_constraints(dof_handler, u_mask, homogeneous, c);
         // λ = 0 where its support meets no particle (seed 3.15a): not part of the solve.
         for (const auto i : multiplier_dofs)
           if (!active.is_element(i) && !c.is_constrained(i))

@@ -39,13 +39,13 @@ namespace fdparticle
 
     /**
      * Wall conditions: the components in velocity_mask take each wall's velocity
-     * (homogeneous = true: zero, for Newton updates), the components in zero_mask are
-     * zero on every wall. Walls at rest are applied first, so at an edge shared by a
-     * resting and a sliding wall the fluid is at rest ("watertight" lid).
+     * (homogeneous = true: zero, for Newton updates). Walls at rest are applied first, so
+     * at an edge shared by a resting and a sliding wall the fluid is at rest ("watertight"
+     * lid). The multiplier is not constrained on walls: a particle near a wall needs the
+     * rigid modes of λ in the cut cells that touch it (doc/method.md §4).
      */
     void make_wall_constraints(const DoFHandler<dim> &    dof_handler,
                                const ComponentMask &      velocity_mask,
-                               const ComponentMask &      zero_mask,
                                const bool                 homogeneous,
                                AffineConstraints<double> &constraints) const;
 

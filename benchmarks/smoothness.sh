@@ -1,25 +1,27 @@
 #!/usr/bin/env bash
-# Issue 3 evidence in 3D: the seed's sediment scene (prm/sediment.prm, 8 x 16 x 8, dt = 0.1)
-# and cavity scene (prm/cavity.prm, 10^3, dt = 0.01) in the variants
+# Issue 3 evidence: the seed's sediment scene (prm/sediment.prm, 8 x 16 x 8, dt = 0.1) and
+# cavity scene (prm/cavity.prm, 10^3, dt = 0.01), or their 2D counterparts (prm/sediment2d.prm,
+# prm/cavity2d.prm: scene names sediment2d, cavity2d), in the variants
 #   seed      uniform mesh, 7-point Gauss in cut cells (the seed's method)
 #   levelset  uniform mesh, level-set cut-cell quadrature
 #   adaptive  2 particle refinement levels, 7-point Gauss
 #   adaptls   2 particle refinement levels, level-set quadrature
 # Each run checkpoints every 20 steps into a persistent work directory and resumes from
 # there when started again, so the long runs can be spread over several sessions.
-# After the runs, doc/smoothness_3d.csv (one row per run) and doc/smoothness_3d_*.png
+# After the runs, doc/smoothness.csv (one row per run) and doc/smoothness_SCENE.png
 # (V_y(t) or omega_z(t) of every variant on one figure) are rewritten from whatever
 # the work directory holds (runs that have not reached their end are marked 'partial').
 #
 # Usage (regenerate):
-#   bash benchmarks/smoothness_3d.sh sediment:seed:100 sediment:levelset:100 cavity:seed:5 ...
-#   bash benchmarks/smoothness_3d.sh --report          (only the table and plots)
+#   bash benchmarks/smoothness.sh sediment:seed:100 sediment:levelset:100 cavity:seed:5 ...
+#   bash benchmarks/smoothness.sh sediment2d:{seed,levelset,adaptive,adaptls}:100
+#   bash benchmarks/smoothness.sh --report          (only the table and plots)
 # Each argument is SCENE:VARIANT:END_TIME. WORK=DIR overrides the work directory, EXE=PATH
 # the executable.
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
-work="${WORK:-$top/benchmarks/work/smoothness_3d}"
+work="${WORK:-$top/benchmarks/work/smoothness}"
 mkdir -p "$work"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 
@@ -61,7 +63,7 @@ for spec in "$@"; do
 done
 
 # ---- Report --------------------------------------------------------------------------
-csv="$top/doc/smoothness_3d.csv"
+csv="$top/doc/smoothness.csv"
 echo "scene,variant,t_end,steps,complete,smoothness,wall_seconds,dofs_first,dofs_last,newton_per_step,time_step_reductions" > "$csv"
 for dir in "$work"/*_*/; do
   dir=${dir%/}; name=$(basename "$dir"); scene=${name%%_*}; variant=${name#*_}
@@ -80,7 +82,7 @@ done
 column -s, -t "$csv"
 
 plot() { # scene column label
-  local scene=$1 col=$2 label=$3 png="$top/doc/smoothness_3d_$1.png" cmd=""
+  local scene=$1 col=$2 label=$3 png="$top/doc/smoothness_$1.png" cmd=""
   for dir in "$work/${scene}"_*/; do
     dir=${dir%/}; [ -f "$dir/particles.csv" ] || continue
     [ "${dir##*_}" = long ] && continue
@@ -89,10 +91,12 @@ plot() { # scene column label
   [ -n "$cmd" ] || return 0
   gnuplot -e "set terminal pngcairo size 900,500; set output '$png'; set datafile separator ',';
               set key autotitle columnhead; set xlabel 't'; set ylabel '$label';
-              set title '$scene (3D): $label of the particle'; set grid; plot $cmd" &&
+              set title '$scene: $label of the particle'; set grid; plot $cmd" &&
     echo "wrote $png"
 }
 plot sediment 7 'V_y'
+plot sediment2d 7 'V_y'
+plot cavity2d 6 'V_x'
 # Issue 6: the long run, height and velocity of the sphere to t = 1000.
 long="$work/sediment_long/particles.csv"
 [ -f "$long" ] && gnuplot -e "set terminal pngcairo size 900,600; set output '$top/doc/sediment_3d_long.png';
