@@ -9,17 +9,16 @@
 #   doc/studies/dt_2d/     2D settling disk (Stokes, 32 x 64): terminal velocity vs dt = 0.0125 ... 2,
 #                          BDF1 and BDF2 (16 runs, ~7 min)
 # Usage (from anywhere; serial runs, one at a time):
-#   bash benchmarks/studies.sh [reference_2d] [space_2d] [time_2d] [dt_2d] [space_3d]   # default: the 2D ones
+#   bash benchmarks/studies.sh [reference_2d] [space_2d] [time_2d] [dt_2d] [space_3d]   # default: all
 # FDPARTICLE=path/to/fdparticle overrides the program (default build/fdparticle, built if
-# missing). space_3d is the 3D counterpart; it was not run for doc/studies.md (hours on a
-# 2-core machine; see there).
+# missing). space_3d: the periodic cubic array of spheres (steady, one solve per run).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$top"
 exe="${FDPARTICLE:-$top/build/fdparticle}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 studies=("$@")
-[ ${#studies[@]} -gt 0 ] || studies=(reference_2d space_2d time_2d dt_2d)
+[ ${#studies[@]} -gt 0 ] || studies=(reference_2d space_2d time_2d dt_2d space_3d)
 # The runs themselves (prm, output, logs) go to $STUDY_WORK (default output/studies, ignored
 # by git); rerunning with the same work directory reuses finished runs (--reuse).
 work="${STUDY_WORK:-$top/output/studies}"
@@ -37,14 +36,13 @@ for study in "${studies[@]}"; do
     space_2d)
       # Mesh series x quadrature (Cartesian product, 28 runs, ~2 min). Reference: run 28,
       # the finest surface cells (following, 4 levels, h = 1/128, level set). 5 levels
-      # (h = 1/256) is left out: MUMPS fails there (INFOG(1) = -9) and the time-step
-      # recovery then halves dt, so it would not be the same time discretization.
+      # (h = 1/256) is included since MUMPS retries with more working space (ICNTL(14)).
       tools/fdparticle-study prm/sediment2d.prm --executable "$exe" --keep-going --reuse --work "$work/space_2d" \
         --set "Time/End time=2" \
-        --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|0|0,uniform|1|0,uniform|2|0,following|0|1,following|0|2,following|0|3,following|0|4" \
+        --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|0|0,uniform|1|0,uniform|2|0,following|0|1,following|0|2,following|0|3,following|0|4,following|0|5" \
         --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|3,gauss|7,gauss|10,level set|7" \
         --qoi terminal-vy,vy-at:1,terminal-fy \
-        --reference run:28 --output doc/studies/space_2d
+        --reference run:32 --output doc/studies/space_2d
       ;;
     time_2d)
       # Fixed mesh (16 x 32, level-set rules, Stokes), each scheme against its own
@@ -57,12 +55,15 @@ for study in "${studies[@]}"; do
         --qoi y-at:1,vy-at:1 --reference group-finest --output doc/studies/time_2d
       ;;
     space_3d)
-      # Not run for doc/studies.md: 3D is ~3 s per step on the 8 x 16 x 8 base alone (doc/performance.md).
-      tools/fdparticle-study prm/sediment.prm --executable "$exe" --keep-going --reuse --work "$work/space_3d" \
-        --set "Time/End time=1" \
-        --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|0|0,uniform|1|0,following|0|1,following|0|2" \
+      # 3D, steady: the cubic array of fixed spheres (c = 0.064, prm/validation/array3d.prm),
+      # QoI the superficial velocity U = mean_vx, reference Zick & Homsy's K = 2.810:
+      # U = 1/(6 pi mu a K) = 0.0760855. Uniform 8^3, 16^3 against following 4^3 + 1, 2
+      # levels (the same surface h), Gauss 7 against level set (8 runs, ~10 min).
+      # (The settling sphere of prm/sediment.prm costs 150 s per step with 2 levels.)
+      tools/fdparticle-study prm/validation/array3d.prm --executable "$exe" --keep-going --reuse --work "$work/space_3d" \
+        --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|1|0,uniform|2|0,following|0|1,following|0|2" \
         --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|7,level set|7" \
-        --qoi terminal-vy --reference run:8 --output doc/studies/space_3d
+        --qoi mean_vx --reference 0.0760855 --output doc/studies/space_3d
       ;;
     dt_2d)
       # Fixed mesh (32 x 64, level-set rules, Stokes), dt = 0.0125 ... 2 to t = 6 (~7 min):

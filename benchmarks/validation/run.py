@@ -103,26 +103,41 @@ plot {plots}, 1 with lines dt 2 lc rgb 'gray' title '1 %'
 
 
 # ---- cases ------------------------------------------------------------------------------
-def array2d(r, md):
-    refs = {0.05: 15.56, 0.20: 51.53, 0.40: 217.89}
+def array_case(r, md, dim, levels):
+    """Periodic unit cell with one fixed particle of solid fraction c, driven by a unit
+    body force: F = f |cell| = 1 and U = mean_vx give F/(mu U) (2D) or K (3D)."""
+    if dim == 2:
+        refs, base_cells = {0.05: 15.56, 0.20: 51.53, 0.40: 217.89}, 16
+        radius = lambda c: math.sqrt(c / math.pi)
+        centre, quantity = "0.5, 0.5", "F/(mu U)"
+    else:
+        refs, base_cells = {0.027: 2.008, 0.064: 2.810, 0.125: 4.292}, 4
+        radius = lambda c: (3 * c / (4 * math.pi)) ** (1 / 3)
+        centre, quantity = "0.5, 0.5, 0.5", "K"
     rows, series = [], []
     for c, ref in refs.items():
-        a = math.sqrt(c / math.pi)
+        a = radius(c)
         points = []
-        for lv in range(0, 5):
-            res = r.run(f"array2d_c{c}_lv{lv}", "array2d.prm", {
-                "Particles/Particles": f"0.5, 0.5 : {a:.6f} : 1 : fixed",
+        for lv in levels:
+            res = r.run(f"array{dim}d_c{c}_lv{lv}", f"array{dim}d.prm", {
+                "Particles/Particles": f"{centre} : {a:.6f} : 1 : fixed",
                 "Refinement/Particle refinement levels": lv})
             if not res:
                 continue
             parts, stats, dofs, wall = res
-            value = parts[-1]["fx"] / stats[-1]["mean_vx"]
-            dh = 2 * a * 16 * 2 ** lv
-            rows.append([c, ref, f"{value:.3f}", f"{pct(value, ref):+.2f}", f"{dh:.1f}", dofs, f"{wall:.1f}"])
+            drag_per_speed = parts[-1]["fx"] / stats[-1]["mean_vx"]
+            value = drag_per_speed if dim == 2 else drag_per_speed / (6 * math.pi * a)
+            dh = 2 * a * base_cells * 2 ** lv
+            rows.append([c, ref, f"{value:.4f}", f"{pct(value, ref):+.2f}", f"{dh:.1f}", dofs, f"{wall:.1f}"])
             points.append((dh, pct(value, ref)))
         series.append((f"c = {c}", points))
-    header = ["c", "reference F/(mu U)", "ours", "error %", "d/h", "DoFs", "wall s"]
-    write_csv("array2d", header, rows)
+    header = ["c", f"reference {quantity}", "ours", "error %", "d/h", "DoFs", "wall s"]
+    write_csv(f"array{dim}d", header, rows)
+    return header, rows, series
+
+
+def array2d(r, md):
+    header, rows, series = array_case(r, md, 2, range(0, 5))
     error_plot("array2d", "2D square array of cylinders (Sangani & Acrivos 1982)", "d/h", series)
     md.append("## 2. Square array of fixed cylinders, 2D (Sangani & Acrivos 1982)\n\n"
               "Periodic unit cell [0,1]², one fixed disk of radius a = √(c/π) in the centre, "
@@ -134,25 +149,7 @@ def array2d(r, md):
 
 
 def array3d(r, md, levels):
-    refs = {0.027: 2.008, 0.064: 2.810, 0.125: 4.292}
-    rows, series = [], []
-    for c, ref in refs.items():
-        a = (3 * c / (4 * math.pi)) ** (1 / 3)
-        points = []
-        for lv in levels:
-            res = r.run(f"array3d_c{c}_lv{lv}", "array3d.prm", {
-                "Particles/Particles": f"0.5, 0.5, 0.5 : {a:.6f} : 1 : fixed",
-                "Refinement/Particle refinement levels": lv})
-            if not res:
-                continue
-            parts, stats, dofs, wall = res
-            value = parts[-1]["fx"] / (6 * math.pi * a * stats[-1]["mean_vx"])
-            dh = 2 * a * 4 * 2 ** lv
-            rows.append([c, ref, f"{value:.4f}", f"{pct(value, ref):+.2f}", f"{dh:.1f}", dofs, f"{wall:.1f}"])
-            points.append((dh, pct(value, ref)))
-        series.append((f"c = {c}", points))
-    header = ["c", "reference K", "ours", "error %", "d/h", "DoFs", "wall s"]
-    write_csv("array3d", header, rows)
+    header, rows, series = array_case(r, md, 3, levels)
     error_plot("array3d", "3D simple cubic array of spheres (Zick & Homsy 1982)", "d/h", series)
     md.append("## 1. Simple cubic array of fixed spheres, 3D (Zick & Homsy 1982)\n\n"
               "Periodic unit cell [0,1]³, one fixed sphere, a = (3c/4π)^{1/3}, body force "
