@@ -687,17 +687,20 @@ namespace fdparticle
                                  ", dt = " + sci(time.next_step()) + ")";
         if (failure.empty())
           {
-            // Positions are checked before the step is accepted.
+            // Positions are checked before the step is accepted. A ball that went through
+            // the wall repulsion's range in one step (a fast particle, a long step) is a
+            // failed step like a Newton failure: with a shorter step the implicit repulsion
+            // acts in time. Only when Δt cannot be halved further does the run stop.
             particles.finish_step(time);
             try
               {
                 particles.check_positions(domain, time.time() + time.next_step());
+                return;
               }
             catch (const std::exception &e)
               {
-                stop(ParameterTools::one_line_message(e));
+                failure = ParameterTools::one_line_message(e);
               }
-            return;
           }
         roll_back();
         if (!time.reduce_step())
