@@ -700,6 +700,8 @@ namespace fdparticle
             catch (const std::exception &e)
               {
                 failure = ParameterTools::one_line_message(e);
+                if (!failure.empty() && failure.back() == '.')
+                  failure.pop_back();
               }
           }
         roll_back();
