@@ -316,6 +316,11 @@ namespace fdparticle
                 // fraction of the pairing (doc/method.md, "Fluid penalty").
                 const double R = particles[rule.particle].radius;
                 const double s = fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * JxW;
+                // Strain penalty s_e μ (2ε(λ), ε(η)): softens the rigidity of λ DoFs that live
+                // mostly in the fluid (without it the cut cells lock, the particle looks
+                // O(h) larger) and is blind to λ's rigid modes, ε(V + θ × r) = 0. Only in
+                // cells that own particle points: elsewhere those rigid modes would be held
+                // by the vanishing α² term alone (doc/method.md §4, "Strain penalty").
                 const double se = (has_particle ? strain_penalty * mu * JxW : 0.0);
                 for (const unsigned int a : l_dofs)
                   {
