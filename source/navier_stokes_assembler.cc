@@ -51,6 +51,12 @@ namespace fdparticle
                         "that lie mostly in the fluid (0: the cut cells lock, the particle acts "
                         "O(h) too large) without touching the rigid modes of lambda, which "
                         "carry force and torque (doc/method.md, 'Strain penalty').");
+      prm.declare_entry("Penalty ramp", "0", Patterns::Anything(),
+                        "theta_0 >= 0: in a cut cell whose particle fraction theta is below "
+                        "theta_0, both penalties above are scaled by theta/theta_0, so they "
+                        "switch on continuously as a cell starts to be cut (smoother particle "
+                        "velocities, doc/smoothness.md). 0: off. Measured with theta_0 = 0.2: "
+                        "use Strain penalty = 0.15 to keep the accuracy (doc/method.md §4).");
       prm.declare_entry("Interior pressure penalty", "1", Patterns::Anything(),
                         "delta >= 0 in the term (delta/mu)*int((p - p_hydrostatic) q) over cells "
                         "inside a particle. Inside a rigid body p and lambda are determined only "
@@ -71,6 +77,9 @@ namespace fdparticle
     strain_penalty = ParameterTools::to_double(prm.get("Strain penalty"), "Multiplier/Strain penalty");
     AssertThrow(strain_penalty >= 0,
                 ExcMessage("Parameter 'Multiplier/Strain penalty' must not be negative."));
+    penalty_ramp = ParameterTools::to_double(prm.get("Penalty ramp"), "Multiplier/Penalty ramp");
+    AssertThrow(penalty_ramp >= 0,
+                ExcMessage("Parameter 'Multiplier/Penalty ramp' must not be negative."));
     interior_pressure_penalty = ParameterTools::to_double(prm.get("Interior pressure penalty"),
                                                           "Multiplier/Interior pressure penalty");
     AssertThrow(interior_pressure_penalty >= 0,
@@ -159,6 +168,20 @@ namespace fdparticle
           std::any_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; });
         const bool penalise =
           (rule.kind == CellKind::cut && (fluid_penalty > 0 || strain_penalty > 0));
+        // Optional ramp of the penalties with the cell's particle fraction θ (Penalty ramp):
+        // without it they switch on at full strength when a cell starts to be cut.
+        double ramp = 1.0;
+        if (penalise && penalty_ramp > 0)
+          {
+            double inside = 0, total = 0;
+            for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+              {
+                total += fv.JxW(q);
+                if (rule.owner[q] >= 0)
+                  inside += fv.JxW(q);
+              }
+            ramp = std::min(1.0, inside / total / penalty_ramp);
+          }
         if (has_particle || penalise)
           {
             fv[lam].get_function_values(solution, l);
@@ -315,13 +338,14 @@ namespace fdparticle
                 // settling 10x too fast at Δt = 1). For α ≫ μ/R² the weight is sα, a fixed
                 // fraction of the pairing (doc/method.md, "Fluid penalty").
                 const double R = particles[rule.particle].radius;
-                const double s = fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * JxW;
+                const double s =
+                  ramp * fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * JxW;
                 // Strain penalty s_e μ (2ε(λ), ε(η)): softens the rigidity of λ DoFs that live
                 // mostly in the fluid (without it the cut cells lock, the particle looks
                 // O(h) larger) and is blind to λ's rigid modes, ε(V + θ × r) = 0. Only in
                 // cells that own particle points: elsewhere those rigid modes would be held
                 // by the vanishing α² term alone (doc/method.md §4, "Strain penalty").
-                const double se = (has_particle ? strain_penalty * mu * JxW : 0.0);
+                const double se = (has_particle ? ramp * strain_penalty * mu * JxW : 0.0);
                 for (const unsigned int a : l_dofs)
                   {
                     const unsigned int ca = comp[a];

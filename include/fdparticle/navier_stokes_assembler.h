@@ -90,6 +90,7 @@ namespace fdparticle
     MappingQ<dim>                 mapping{1};
     double                        fluid_penalty = 1.0;
     double                        strain_penalty = 0.05;
+    double                        penalty_ramp = 0.0;
     double                        interior_pressure_penalty = 1.0;
     Point<dim>                    pressure_reference;
   };
