@@ -18,7 +18,7 @@ cd "$top"
 exe="${FDPARTICLE:-$top/build/fdparticle}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 studies=("$@")
-[ ${#studies[@]} -gt 0 ] || studies=(reference_2d space_2d time_2d dt_2d space_3d)
+[ ${#studies[@]} -gt 0 ] || studies=(reference_2d space_2d time_2d dt_2d space_3d space_3d_small)
 # The runs themselves (prm, output, logs) go to $STUDY_WORK (default output/studies, ignored
 # by git); rerunning with the same work directory reuses finished runs (--reuse).
 work="${STUDY_WORK:-$top/output/studies}"
@@ -67,6 +67,17 @@ for study in "${studies[@]}"; do
         --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|7,level set|7" \
         --qoi mean_vx --reference 0.0760855 --output doc/studies/space_3d
       ;;
+    space_3d_small)
+      # The same with a small sphere, c = 0.008 (a = 0.124070; the box is 8 diameters):
+      # reference from the Hasimoto / Sangani & Acrivos series (shared/references/README.md,
+      # good for c <~ 0.2): K = 1.524646, U = 1/(6 pi mu a K) = 0.2804548. Uniform 8^3, 16^3
+      # against following 4^3 + 2, 3, 4 levels, Gauss 7 against level set (10 runs).
+      tools/fdparticle-study prm/validation/array3d.prm --executable "$exe" --keep-going --reuse --work "$work/space_3d_small" \
+        --set "Particles/Particles=0.5, 0.5, 0.5 : 0.124070 : 1 : fixed" \
+        --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|1|0,uniform|2|0,following|0|2,following|0|3,following|0|4" \
+        --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|7,level set|7" \
+        --qoi mean_vx --reference 0.2804548 --output doc/studies/space_3d_small
+      ;;
     dt_2d)
       # Fixed mesh (32 x 64, level-set rules, Stokes), dt = 0.0125 ... 2 to t = 6 (~7 min):
       # the terminal velocity must not depend on dt (fluid penalty weight of 78b701a).
@@ -77,6 +88,6 @@ for study in "${studies[@]}"; do
         --vary "Time/Time step=0.0125,0.025,0.05,0.1,0.2,0.5,1,2" \
         --qoi vy-at:6,terminal-vy,y-at:6 --reference group-finest --output doc/studies/dt_2d
       ;;
-    *) echo "unknown study '$study' (reference_2d, space_2d, time_2d, dt_2d, space_3d)" >&2; exit 1 ;;
+    *) echo "unknown study '$study' (reference_2d, space_2d, time_2d, dt_2d, space_3d, space_3d_small)" >&2; exit 1 ;;
   esac
 done
