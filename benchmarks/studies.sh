@@ -24,14 +24,36 @@ studies=("$@")
 work="${STUDY_WORK:-$top/output/studies}"
 mkdir -p "$work"
 
+study() { # BASE NAME [fdparticle-study options]: runs in $work/NAME, results in doc/studies/NAME
+  local base=$1 name=$2
+  shift 2
+  tools/fdparticle-study "$base" --executable "$exe" --keep-going --reuse --work "$work/$name" \
+    "$@" --output "doc/studies/$name"
+}
+time_study() { # NAME REFINEMENTS END_TIME TIME_STEPS QOIS: BDF1 vs BDF2 on a fixed uniform
+               # mesh (Stokes, level set), each scheme against its own finest time step
+  study prm/sediment2d.prm "$1" --set "Time/End time=$3" --set "Geometry/Global refinements=$2" \
+    --set "Fluid/Convection=false" --set "Quadrature/Cut cells=level set" \
+    --vary "Time/Scheme=BDF1,BDF2" --vary "Time/Time step=$4" --qoi "$5" --reference group-finest
+}
+array_study() { # NAME MESHES REFERENCE_U [options]: the periodic cubic array of fixed spheres,
+                # QoI the superficial velocity mean_vx, Gauss 7 against level set
+  local name=$1 meshes=$2 reference=$3
+  shift 3
+  study prm/validation/array3d.prm "$name" "$@" \
+    --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=$meshes" \
+    --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|7,level set|7" \
+    --qoi mean_vx --reference "$reference"
+}
+
 for study in "${studies[@]}"; do
   case "$study" in
     reference_2d)
       # One run on the uniform 64 x 128 mesh (157k unknowns, ~40 s).
-      tools/fdparticle-study prm/sediment2d.prm --executable "$exe" --keep-going --reuse --work "$work/reference_2d" \
+      study prm/sediment2d.prm reference_2d \
         --set "Time/End time=2" --set "Geometry/Global refinements=3" \
         --set "Quadrature/Cut cells=level set" \
-        --qoi terminal-vy,vy-at:1,terminal-fy --output doc/studies/reference_2d
+        --qoi terminal-vy,vy-at:1,terminal-fy
       ;;
     space_2d)
       # Mesh series x quadrature (Cartesian product, 32 runs, ~6 min). Reference: the
@@ -39,22 +61,17 @@ for study in "${studies[@]}"; do
       # following refinement on the 8 x 16 base converges to a value 0.7 % away, the error of
       # the coarse far field, so its own finest run is not the reference (doc/studies.md). 5 levels
       # (h = 1/256) is included since MUMPS retries with more working space (ICNTL(14)).
-      tools/fdparticle-study prm/sediment2d.prm --executable "$exe" --keep-going --reuse --work "$work/space_2d" \
+      study prm/sediment2d.prm space_2d \
         --set "Time/End time=2" \
         --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|0|0,uniform|1|0,uniform|2|0,following|0|1,following|0|2,following|0|3,following|0|4,following|0|5" \
         --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|3,gauss|7,gauss|10,level set|7" \
         --qoi terminal-vy,vy-at:1,terminal-fy \
-        --reference -0.0117249 --output doc/studies/space_2d
+        --reference -0.0117249
       ;;
     time_2d)
       # Fixed mesh (16 x 32, level-set rules, Stokes), each scheme against its own
       # finest time step; QoI: the particle's height at t = 1.
-      tools/fdparticle-study prm/sediment2d.prm --executable "$exe" --keep-going --reuse --work "$work/time_2d" \
-        --set "Time/End time=1" --set "Geometry/Global refinements=1" \
-        --set "Fluid/Convection=false" --set "Quadrature/Cut cells=level set" \
-        --vary "Time/Scheme=BDF1,BDF2" \
-        --vary "Time/Time step=0.1,0.05,0.025,0.0125,0.00625" \
-        --qoi y-at:1,vy-at:1 --reference group-finest --output doc/studies/time_2d
+      time_study time_2d 1 1 0.1,0.05,0.025,0.0125,0.00625 y-at:1,vy-at:1
       ;;
     space_3d)
       # 3D, steady: the cubic array of fixed spheres (c = 0.064, prm/validation/array3d.prm),
@@ -62,31 +79,20 @@ for study in "${studies[@]}"; do
       # U = 1/(6 pi mu a K) = 0.0760855. Uniform 8^3, 16^3 against following 4^3 + 1, 2
       # levels (the same surface h), Gauss 7 against level set (8 runs, ~10 min).
       # (The settling sphere of prm/sediment.prm costs 150 s per step with 2 levels.)
-      tools/fdparticle-study prm/validation/array3d.prm --executable "$exe" --keep-going --reuse --work "$work/space_3d" \
-        --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|1|0,uniform|2|0,following|0|1,following|0|2" \
-        --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|7,level set|7" \
-        --qoi mean_vx --reference 0.0760855 --output doc/studies/space_3d
+      array_study space_3d "uniform|1|0,uniform|2|0,following|0|1,following|0|2" 0.0760855
       ;;
     space_3d_small)
       # The same with a small sphere, c = 0.008 (a = 0.124070; the box is 8 diameters):
       # reference from the Hasimoto / Sangani & Acrivos series (shared/references/README.md,
       # good for c <~ 0.2): K = 1.524646, U = 1/(6 pi mu a K) = 0.2804548. Uniform 8^3, 16^3
       # against following 4^3 + 2, 3, 4 levels, Gauss 7 against level set (10 runs).
-      tools/fdparticle-study prm/validation/array3d.prm --executable "$exe" --keep-going --reuse --work "$work/space_3d_small" \
-        --set "Particles/Particles=0.5, 0.5, 0.5 : 0.124070 : 1 : fixed" \
-        --vary "@mesh|Geometry/Global refinements|Refinement/Particle refinement levels=uniform|1|0,uniform|2|0,following|0|2,following|0|3,following|0|4" \
-        --vary "Quadrature/Cut cells|Quadrature/Gauss points in cut cells=gauss|7,level set|7" \
-        --qoi mean_vx --reference 0.2804548 --output doc/studies/space_3d_small
+      array_study space_3d_small "uniform|1|0,uniform|2|0,following|0|2,following|0|3,following|0|4" 0.2804548 \
+        --set "Particles/Particles=0.5, 0.5, 0.5 : 0.124070 : 1 : fixed"
       ;;
     dt_2d)
       # Fixed mesh (32 x 64, level-set rules, Stokes), dt = 0.0125 ... 2 to t = 6 (~7 min):
       # the terminal velocity must not depend on dt (fluid penalty weight of 78b701a).
-      tools/fdparticle-study prm/sediment2d.prm --executable "$exe" --keep-going --reuse --work "$work/dt_2d" \
-        --set "Time/End time=6" --set "Geometry/Global refinements=2" \
-        --set "Fluid/Convection=false" --set "Quadrature/Cut cells=level set" \
-        --vary "Time/Scheme=BDF1,BDF2" \
-        --vary "Time/Time step=0.0125,0.025,0.05,0.1,0.2,0.5,1,2" \
-        --qoi vy-at:6,terminal-vy,y-at:6 --reference group-finest --output doc/studies/dt_2d
+      time_study dt_2d 2 6 0.0125,0.025,0.05,0.1,0.2,0.5,1,2 vy-at:6,terminal-vy,y-at:6
       ;;
     *) echo "unknown study '$study' (reference_2d, space_2d, time_2d, dt_2d, space_3d, space_3d_small)" >&2; exit 1 ;;
   esac

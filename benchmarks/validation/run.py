@@ -22,8 +22,7 @@ from importlib.machinery import SourceFileLoader
 TOP = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 DOC = os.path.join(TOP, "doc")
-REFS = "/work/shared/references" if not os.path.isdir(os.path.join(TOP, "..", "shared")) \
-    else os.path.join(TOP, "..", "shared", "references")
+REFS = os.path.join(TOP, "..", "shared", "references")  # the project's ../shared beside the clone
 
 
 def read_rows(path):

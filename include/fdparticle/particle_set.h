@@ -62,9 +62,6 @@ namespace fdparticle
     /// Wall repulsion of the last step (WallRepulsion), not part of 'force'.
     Tensor<1, dim> contact_force;
 
-    /// Is (V, ω) given rather than solved for?
-    bool kinematics_given() const { return motion != ParticleMotion::free; }
-
     /// Offset of (V, ω) in the particle block; numbers::invalid_unsigned_int if not free.
     unsigned int first_unknown = numbers::invalid_unsigned_int;
 
