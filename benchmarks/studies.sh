@@ -4,10 +4,10 @@
 #                              space_2d's "following, 3 levels" runs are compared with
 #   doc/studies/space_2d/  2D settling disk: uniform vs particle-following refinement,
 #                          Gauss 3/7/10 vs level-set cut-cell quadrature (28 runs, ~2 min)
-#   doc/studies/time_2d/   2D settling disk (Stokes): BDF1 vs BDF2, dt = 0.1 / 2^k, k = 0..4
-#                          (10 runs, ~2 min)
+#   doc/studies/time_2d/   2D settling disk (Stokes): BDF1 vs BDF2, seed vs fixed pairing,
+#                          dt = 0.04 / 2^k, k = 0..4 (20 runs, ~3 min)
 #   doc/studies/dt_2d/     2D settling disk (Stokes, 32 x 64): terminal velocity vs dt = 0.0125 ... 2,
-#                          BDF1 and BDF2 (16 runs, ~7 min)
+#                          BDF1 and BDF2, seed vs fixed pairing (32 runs, ~15 min)
 # Usage (from anywhere; serial runs, one at a time):
 #   bash benchmarks/studies.sh [reference_2d] [space_2d] [time_2d] [dt_2d] [space_3d]   # default: all
 # FDPARTICLE=path/to/fdparticle overrides the program (default build/fdparticle, built if
@@ -31,9 +31,13 @@ study() { # BASE NAME [fdparticle-study options]: runs in $work/NAME, results in
     "$@" --output "doc/studies/$name"
 }
 time_study() { # NAME REFINEMENTS END_TIME TIME_STEPS QOIS: BDF1 vs BDF2 on a fixed uniform
-               # mesh (Stokes, level set), each scheme against its own finest time step
+               # mesh (Stokes, level set), each scheme against its own finest time step, with
+               # the seed's pairing (alpha from the current dt) and with a fixed pairing time
+               # step (Multiplier/Pairing time step = 0.1: the discrete constraint no longer
+               # changes with dt)
   study prm/sediment2d.prm "$1" --set "Time/End time=$3" --set "Geometry/Global refinements=$2" \
     --set "Fluid/Convection=false" --set "Quadrature/Cut cells=level set" \
+    --vary "Multiplier/Pairing time step=0,0.1" \
     --vary "Time/Scheme=BDF1,BDF2" --vary "Time/Time step=$4" --qoi "$5" --reference group-finest
 }
 array_study() { # NAME MESHES REFERENCE_U [options]: the periodic cubic array of fixed spheres,
@@ -69,9 +73,10 @@ for study in "${studies[@]}"; do
         --reference -0.0117249
       ;;
     time_2d)
-      # Fixed mesh (16 x 32, level-set rules, Stokes), each scheme against its own
-      # finest time step; QoI: the particle's height at t = 1.
-      time_study time_2d 1 1 0.1,0.05,0.025,0.0125,0.00625 y-at:1,vy-at:1
+      # Fixed mesh (16 x 32, level-set rules, Stokes), each scheme and pairing against its
+      # own finest time step; QoI: the particle's height at t = 0.2 (before the first cell
+      # changes state) and at t = 0.4 (after one has, near t = 0.24).
+      time_study time_2d 1 0.4 0.04,0.02,0.01,0.005,0.0025 y-at:0.2,y-at:0.4,vy-at:0.2
       ;;
     space_3d)
       # 3D, steady: the cubic array of fixed spheres (c = 0.064, prm/validation/array3d.prm),

@@ -57,6 +57,15 @@ namespace fdparticle
                         "switch on continuously as a cell starts to be cut (smoother particle "
                         "velocities, doc/smoothness.md). 0: off. Measured with theta_0 = 0.2: "
                         "use Strain penalty = 0.15 to keep the accuracy (doc/method.md §4).");
+      prm.declare_entry("Pairing time step", "0", Patterns::Anything(),
+                        "dt_p >= 0. 0: the pairing <lambda, v> = int(alpha lambda.v + mu "
+                        "grad lambda : grad v) uses alpha = 3 rho/(2 dt) of the current step "
+                        "(the seed, formulation.md). dt_p > 0: alpha = 3 rho/(2 dt_p) in the "
+                        "pairing and in the fluid penalty, whatever dt is. Any pairing gives "
+                        "the same continuous problem, but the discrete rigidity constraint "
+                        "and its penalties then no longer change with dt, so a time-step "
+                        "study sees the scheme's own order (BDF2: 2) and a step halved by "
+                        "recovery solves the same discrete constraint (doc/method.md §4).");
       prm.declare_entry("Interior pressure penalty", "1", Patterns::Anything(),
                         "delta >= 0 in the term (delta/mu)*int((p - p_hydrostatic) q) over cells "
                         "inside a particle. Inside a rigid body p and lambda are determined only "
@@ -80,6 +89,9 @@ namespace fdparticle
     penalty_ramp = ParameterTools::to_double(prm.get("Penalty ramp"), "Multiplier/Penalty ramp");
     AssertThrow(penalty_ramp >= 0,
                 ExcMessage("Parameter 'Multiplier/Penalty ramp' must not be negative."));
+    pairing_time_step = ParameterTools::to_double(prm.get("Pairing time step"), "Multiplier/Pairing time step");
+    AssertThrow(pairing_time_step >= 0,
+                ExcMessage("Parameter 'Multiplier/Pairing time step' must not be negative."));
     interior_pressure_penalty = ParameterTools::to_double(prm.get("Interior pressure penalty"),
                                                           "Multiplier/Interior pressure penalty");
     AssertThrow(interior_pressure_penalty >= 0,
@@ -129,7 +141,8 @@ namespace fdparticle
     const auto &p_dofs = dofs[pressure];
 
     const double         rho = fluid.density, mu = fluid.viscosity;
-    const double         alpha = rho * c[0];
+    // α of the pairing <λ, v> (formulation.md); the fluid's own ρ c0 u stays in the momentum rows.
+    const double alpha = (pairing_time_step > 0 ? 1.5 * rho / pairing_time_step : rho * c[0]);
     const Tensor<1, dim> static_force = fluid.hydrostatic_gradient(); // ρ g + f
     const unsigned int   n_rot = RB::n_rotations;
 

@@ -91,6 +91,7 @@ namespace fdparticle
     double                        fluid_penalty = 1.0;
     double                        strain_penalty = 0.05;
     double                        penalty_ramp = 0.0;
+    double                        pairing_time_step = 0.0; // 0: α = ρ c0 of the current step
     double                        interior_pressure_penalty = 1.0;
     Point<dim>                    pressure_reference;
   };
