@@ -18,46 +18,23 @@ A second, failing study (a time the run does not reach in --qoi) must exit non-z
 Usage: check_study.py --tool tools/fdparticle-study --executable build/fdparticle --work DIR
 """
 
-import argparse
 import csv
 import math
 import os
 import re
-import shutil
-import subprocess
 import sys
 
-failures = 0
-
-
-def check(condition, message):
-    global failures
-    print(("ok: " if condition else "FAIL: ") + message, flush=True)
-    if not condition:
-        failures += 1
-    return condition
+import studylib
+from studylib import check
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--tool", required=True)
-    p.add_argument("--executable", required=True)
-    p.add_argument("--work", required=True)
-    args = p.parse_args()
-    here = os.path.dirname(os.path.abspath(__file__))
-    base = os.path.join(here, "settling_2d.prm")
-    if os.path.isdir(args.work):
-        shutil.rmtree(args.work)
-    os.makedirs(args.work)
+    args = studylib.arguments()
     out = os.path.join(args.work, "study")
     levels = [0, 1, 2, 3]
-    cmd = [sys.executable, args.tool, base, "--executable", args.executable,
-           "--vary", "Geometry/Global refinements=" + ",".join(map(str, levels)),
-           "--qoi", "terminal-vy,vy-at:0.3,terminal-fy", "--output", out]
-    print("running: " + " ".join(repr(c) if " " in c else c for c in cmd), flush=True)
-    res = subprocess.run(cmd, capture_output=True, text=True)
-    print(res.stdout)
-    print(res.stderr, file=sys.stderr)
+    res = studylib.run_study(args, "settling_2d.prm",
+                             ["--vary", "Geometry/Global refinements=" + ",".join(map(str, levels)),
+                              "--qoi", "terminal-vy,vy-at:0.3,terminal-fy"], out)
     if not check(res.returncode == 0, f"the study exits with status 0 (got {res.returncode})"):
         return 1
     progress = re.findall(r"^\[run (\d+)/(\d+), \d\d:\d\d elapsed", res.stdout, re.M)
@@ -130,15 +107,13 @@ def main():
         check(ok, f"{png} is a non-empty PNG")
 
     # A study that cannot be evaluated must fail.
-    bad = subprocess.run([sys.executable, args.tool, base, "--executable", args.executable,
-                          "--set", "Time/End time=0.1", "--qoi", "vy-at:5",
-                          "--output", os.path.join(args.work, "bad")],
-                         capture_output=True, text=True)
+    bad = studylib.run_study(args, "settling_2d.prm", ["--set", "Time/End time=0.1", "--qoi", "vy-at:5"],
+                             os.path.join(args.work, "bad"))
     check(bad.returncode != 0 and "fdparticle-study: error" in bad.stderr,
           "a QoI at a time the run does not reach fails the study with an error message")
 
-    print(f"{failures} check(s) failed" if failures else "all checks passed")
-    return 1 if failures else 0
+    print(f"{studylib.failures} check(s) failed" if studylib.failures else "all checks passed")
+    return 1 if studylib.failures else 0
 
 
 if __name__ == "__main__":

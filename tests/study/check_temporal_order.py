@@ -12,45 +12,24 @@ so this test fails if the pairing follows dt again (doc/studies.md §2).
 
 Usage: check_temporal_order.py --tool tools/fdparticle-study --executable build/fdparticle --work DIR
 """
-import argparse
 import csv
 import math
 import os
-import shutil
-import subprocess
 import sys
 
-failures = 0
-
-
-def check(condition, message):
-    global failures
-    print(("ok: " if condition else "FAIL: ") + message, flush=True)
-    if not condition:
-        failures += 1
-    return condition
+import studylib
+from studylib import check
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--tool", required=True)
-    p.add_argument("--executable", required=True)
-    p.add_argument("--work", required=True)
-    args = p.parse_args()
-    base = os.path.join(os.path.dirname(os.path.abspath(__file__)), "temporal_2d.prm")
-    if os.path.isdir(args.work):
-        shutil.rmtree(args.work)
-    os.makedirs(args.work)
+    args = studylib.arguments()
     out = os.path.join(args.work, "study")
     steps = ["0.02", "0.01", "0.005"]
-    cmd = [sys.executable, args.tool, base, "--executable", args.executable,
-           "--vary", "Time/Scheme=BDF1,BDF2", "--vary", "Time/Time step=" + ",".join(steps),
-           "--qoi", "y-at:0.2", "--reference", "group-finest",
-           "--work", os.path.join(args.work, "runs"), "--output", out]
-    print("running: " + " ".join(cmd), flush=True)
-    res = subprocess.run(cmd, capture_output=True, text=True)
-    print(res.stdout)
-    print(res.stderr, file=sys.stderr)
+    res = studylib.run_study(args, "temporal_2d.prm",
+                             ["--vary", "Time/Scheme=BDF1,BDF2",
+                              "--vary", "Time/Time step=" + ",".join(steps),
+                              "--qoi", "y-at:0.2", "--reference", "group-finest",
+                              "--work", os.path.join(args.work, "runs")], out)
     if not check(res.returncode == 0, "the study ran"):
         sys.exit(1)
     rows = list(csv.DictReader(open(os.path.join(out, "study.csv"))))
@@ -67,8 +46,8 @@ def main():
         finest[scheme] = y[(scheme, steps[-1])]
     check(abs(finest["BDF1"] - finest["BDF2"]) < 1e-6,
           f"BDF1 and BDF2 agree at dt = {steps[-1]}: {finest['BDF1']:.10f} vs {finest['BDF2']:.10f}")
-    print("PASSED" if failures == 0 else f"FAILED ({failures})")
-    sys.exit(1 if failures else 0)
+    print("PASSED" if studylib.failures == 0 else f"FAILED ({studylib.failures})")
+    sys.exit(1 if studylib.failures else 0)
 
 
 if __name__ == "__main__":
