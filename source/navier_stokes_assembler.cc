@@ -80,22 +80,14 @@ namespace fdparticle
   void NavierStokesAssembler<dim>::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Multiplier");
-    fluid_penalty = ParameterTools::to_double(prm.get("Fluid penalty"), "Multiplier/Fluid penalty");
-    AssertThrow(fluid_penalty >= 0,
-                ExcMessage("Parameter 'Multiplier/Fluid penalty' must not be negative."));
-    strain_penalty = ParameterTools::to_double(prm.get("Strain penalty"), "Multiplier/Strain penalty");
-    AssertThrow(strain_penalty >= 0,
-                ExcMessage("Parameter 'Multiplier/Strain penalty' must not be negative."));
-    penalty_ramp = ParameterTools::to_double(prm.get("Penalty ramp"), "Multiplier/Penalty ramp");
-    AssertThrow(penalty_ramp >= 0,
-                ExcMessage("Parameter 'Multiplier/Penalty ramp' must not be negative."));
-    pairing_time_step = ParameterTools::to_double(prm.get("Pairing time step"), "Multiplier/Pairing time step");
-    AssertThrow(pairing_time_step >= 0,
-                ExcMessage("Parameter 'Multiplier/Pairing time step' must not be negative."));
-    interior_pressure_penalty = ParameterTools::to_double(prm.get("Interior pressure penalty"),
-                                                          "Multiplier/Interior pressure penalty");
-    AssertThrow(interior_pressure_penalty >= 0,
-                ExcMessage("Parameter 'Multiplier/Interior pressure penalty' must not be negative."));
+    const auto get = [&](const std::string &name) {
+      return ParameterTools::get_non_negative(prm, name, "Multiplier/" + name);
+    };
+    fluid_penalty = get("Fluid penalty");
+    strain_penalty = get("Strain penalty");
+    penalty_ramp = get("Penalty ramp");
+    pairing_time_step = get("Pairing time step");
+    interior_pressure_penalty = get("Interior pressure penalty");
     prm.leave_subsection();
   }
 

@@ -52,6 +52,16 @@ namespace fdparticle
       return value;
     }
 
+    double get_non_negative(const ParameterHandler &prm, const std::string &name,
+                            const std::string &entry_path)
+    {
+      const double value = to_double(prm.get(name), entry_path);
+      AssertThrow(value >= 0,
+                  ExcMessage("Parameter '" + entry_path + "' must not be negative, got " +
+                             prm.get(name) + "."));
+      return value;
+    }
+
     template <int dim>
     Tensor<1, dim> to_tensor(const std::string &text, const std::string &entry)
     {

@@ -39,6 +39,11 @@ namespace fdparticle
     /// A real number; 'entry' names the parameter in the error message.
     double to_double(const std::string &text, const std::string &entry);
 
+    /// The real number 'name' of the current subsection of prm, which must be >= 0;
+    /// 'entry_path' (Subsection/Name) names it in the error message.
+    double get_non_negative(const ParameterHandler &prm, const std::string &name,
+                            const std::string &entry_path);
+
     /// A comma-separated vector of exactly dim numbers.
     template <int dim>
     Tensor<1, dim> to_tensor(const std::string &text, const std::string &entry);
