@@ -6,8 +6,10 @@
 #   levelset  uniform mesh, level-set cut-cell quadrature
 #   adaptive  2 particle refinement levels, 7-point Gauss
 #   adaptls   2 particle refinement levels, level-set quadrature
-#   adaptramp adaptls with the penalties ramped in with the cut fraction (Multiplier/Penalty
-#             ramp = 0.2, Strain penalty = 0.15)
+#   VARIANTold  the variant with the multiplier settings before session 6 (Penalty ramp = 0,
+#             Strain penalty = 0.05, Interior pressure penalty = 1; doc/method.md §4)
+#   rampold   adaptls with the session-5 ramp (Penalty ramp = 0.2, Strain penalty = 0.15,
+#             Interior pressure penalty = 1)
 # Each run checkpoints every 20 steps into a persistent work directory and resumes from
 # there when started again, so the long runs can be spread over several sessions.
 # After the runs, doc/smoothness.csv (one row per run) and doc/smoothness_SCENE.png
@@ -32,8 +34,10 @@ variant_settings() { # variant -> prm lines appended at the end (later entries w
     seed) printf 'subsection Quadrature\n  set Cut cells = gauss\n  set Gauss points in cut cells = 7\nend\n' ;;
     levelset) printf 'subsection Quadrature\n  set Cut cells = level set\nend\n' ;;
     adaptive) printf 'subsection Quadrature\n  set Cut cells = gauss\n  set Gauss points in cut cells = 7\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
-    adaptramp) variant_settings adaptls
-               printf 'subsection Multiplier\n  set Penalty ramp = 0.2\n  set Strain penalty = 0.15\nend\n' ;;
+    rampold) variant_settings adaptls
+             printf 'subsection Multiplier\n  set Interior pressure penalty = 1\nend\n' ;;
+    *old) variant_settings "${1%old}"
+          printf 'subsection Multiplier\n  set Penalty ramp = 0\n  set Strain penalty = 0.05\n  set Interior pressure penalty = 1\nend\n' ;;
     long) variant_settings seed ;;  # issue 6: the seed variant continued to t = 1000
     adaptls) printf 'subsection Quadrature\n  set Cut cells = level set\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
     *) echo "unknown variant $1" >&2; exit 2 ;;

@@ -34,6 +34,20 @@ namespace fdparticle
         }
       return rule.kind == CellKind::cut ? cut : regular;
     }
+
+    /// Particle fraction θ of a cut cell: its quadrature weights inside a particle over all.
+    template <int dim>
+    double particle_fraction_of(const FEValues<dim> &                            fv,
+                                const typename CutCellQuadrature<dim>::CellRule &rule)
+    {
+      double inside = 0, total = 0;
+      for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+        {
+          total += fv.JxW(q);
+          inside += (rule.owner[q] >= 0 ? fv.JxW(q) : 0.0);
+        }
+      return inside / total;
+    }
   } // namespace
 
   template <int dim>
@@ -45,18 +59,19 @@ namespace fdparticle
                         "s >= 0 in the term s*alpha^2/(alpha + mu/R^2)*int(lambda.eta) over the fluid part of cut "
                         "cells (the seed's weak lambda = 0 in the fluid, 3.18a). It keeps the "
                         "rows of multipliers that barely meet a particle well posed.");
-      prm.declare_entry("Strain penalty", "0.05", Patterns::Anything(),
+      prm.declare_entry("Strain penalty", "0.15", Patterns::Anything(),
                         "s_e >= 0 in the term s_e*mu*int(2 eps(lambda):eps(eta)) over the fluid "
                         "part of cut cells. It softens the rigidity constraint of multipliers "
                         "that lie mostly in the fluid (0: the cut cells lock, the particle acts "
                         "O(h) too large) without touching the rigid modes of lambda, which "
                         "carry force and torque (doc/method.md, 'Strain penalty').");
-      prm.declare_entry("Penalty ramp", "0", Patterns::Anything(),
+      prm.declare_entry("Penalty ramp", "0.2", Patterns::Anything(),
                         "theta_0 >= 0: in a cut cell whose particle fraction theta is below "
                         "theta_0, both penalties above are scaled by theta/theta_0, so they "
                         "switch on continuously as a cell starts to be cut (smoother particle "
-                        "velocities, doc/smoothness.md). 0: off. Measured with theta_0 = 0.2: "
-                        "use Strain penalty = 0.15 to keep the accuracy (doc/method.md §4).");
+                        "velocities, doc/smoothness.md). 0: off, the penalties switch on at "
+                        "full strength (then Strain penalty = 0.05 was the accurate choice, "
+                        "doc/method.md §4).");
       prm.declare_entry("Pairing time step", "0", Patterns::Anything(),
                         "dt_p >= 0. 0: the pairing <lambda, v> = int(alpha lambda.v + mu "
                         "grad lambda : grad v) uses alpha = 3 rho/(2 dt) of the current step "
@@ -66,12 +81,15 @@ namespace fdparticle
                         "and its penalties then no longer change with dt, so a time-step "
                         "study sees the scheme's own order (BDF2: 2) and a step halved by "
                         "recovery solves the same discrete constraint (doc/method.md §4).");
-      prm.declare_entry("Interior pressure penalty", "1", Patterns::Anything(),
-                        "delta >= 0 in the term (delta/mu)*int((p - p_hydrostatic) q) over cells "
+      prm.declare_entry("Interior pressure penalty", "1e-3", Patterns::Anything(),
+                        "delta >= 0 in the term -(delta/mu)*int((p - p_hydrostatic) q) over cells "
                         "inside a particle. Inside a rigid body p and lambda are determined only "
                         "together (p + phi, lambda + psi with <psi, v> = int phi div v solve the "
-                        "same equations); this picks the hydrostatic pressure there. Forces, "
-                        "torques and velocities do not depend on it.");
+                        "same equations, up to the multiplier penalties); this picks the "
+                        "hydrostatic pressure there. It switches on as a cell becomes inside, "
+                        "so keep it small: delta = 1 made the particle velocity step by 5e-4 at "
+                        "every such event, 1e-3 removes the steps, 1e-6 is too weak for "
+                        "round-off (doc/method.md §4).");
     }
     prm.leave_subsection();
   }
@@ -175,18 +193,9 @@ namespace fdparticle
           (rule.kind == CellKind::cut && (fluid_penalty > 0 || strain_penalty > 0));
         // Optional ramp of the penalties with the cell's particle fraction θ (Penalty ramp):
         // without it they switch on at full strength when a cell starts to be cut.
-        double ramp = 1.0;
-        if (penalise && penalty_ramp > 0)
-          {
-            double inside = 0, total = 0;
-            for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
-              {
-                total += fv.JxW(q);
-                if (rule.owner[q] >= 0)
-                  inside += fv.JxW(q);
-              }
-            ramp = std::min(1.0, inside / total / penalty_ramp);
-          }
+        const double ramp = (penalise && penalty_ramp > 0 ?
+                               std::min(1.0, particle_fraction_of(fv, rule) / penalty_ramp) :
+                               1.0);
         if (has_particle || penalise)
           {
             fv[lam].get_function_values(solution, l);
@@ -233,7 +242,10 @@ namespace fdparticle
             if (rule.kind == CellKind::inside && interior_pressure_penalty > 0)
               {
                 // Fix the pressure/multiplier null mode inside rigid bodies (see parameter).
-                const double eps = interior_pressure_penalty / mu * JxW;
+                // The sign makes it the stabilising −C block of the symmetric saddle point
+                // [[A, Bᵀ], [B, −C]] (B = −(q, ∇·v)); where the mode is not exact the other
+                // sign would destabilise.
+                const double eps = -interior_pressure_penalty / mu * JxW;
                 const double p_static = static_force * (fv.quadrature_point(q) - pressure_reference);
                 for (const unsigned int i : p_dofs)
                   {
@@ -531,13 +543,7 @@ namespace fdparticle
             FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
             fv.reinit(cell);
             quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
-            double inside = 0, total = 0;
-            for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
-              {
-                total += fv.JxW(q);
-                inside += (rule.owner[q] >= 0 ? fv.JxW(q) : 0.0);
-              }
-            fraction[cell->active_cell_index()] = inside / total;
+            fraction[cell->active_cell_index()] = particle_fraction_of(fv, rule);
           }
       }
     return fraction;

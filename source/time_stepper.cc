@@ -31,13 +31,12 @@ namespace fdparticle
     using namespace ParameterTools;
     prm.enter_subsection("Time");
     {
-      t_end = to_double(prm.get("End time"), "Time/End time");
+      t_end = get_non_negative(prm, "End time", "Time/End time");
       dt_requested = to_double(prm.get("Time step"), "Time/Time step");
       AssertThrow(dt_requested > 0,
                   ExcMessage("Parameter 'Time/Time step' must be positive, got " +
                              prm.get("Time step") + "."));
       dt_current = dt_requested;
-      AssertThrow(t_end >= 0, ExcMessage("Parameter 'Time/End time' must not be negative."));
       const std::string scheme = trim(prm.get("Scheme"));
       AssertThrow(scheme == "BDF1" || scheme == "BDF2",
                   ExcMessage("Parameter 'Time/Scheme': unknown scheme '" + scheme +

@@ -38,7 +38,7 @@ namespace fdparticle
    * left-hand side of each equation; Newton solves J δ = −R.
    *
    *  1. momentum   ∫ ρ(∂_t u + u·∇u − g)·v − f·v + 2μ ε(u):ε(v) − p ∇·v − Σ_k <λ, v>_{P_k}
-   *  2. continuity −∫ q ∇·u  (+ (δ/μ) ∫ (p − p_hydrostatic) q in cells inside a particle)
+   *  2. continuity −∫ q ∇·u  (− (δ/μ) ∫ (p − p_hydrostatic) q in cells inside a particle)
    *  3. rigidity   <η, u − V_k − ω_k × r>_{P_k}  (+ s α ∫_{Ω_f ∩ cut cells} λ·η)
    *  4. translation (ρ_k − ρ_f)|P_k|(dV_k/dt − g) + <λ, e_i>_{P_k}
    *  5. rotation   (ρ_k − ρ_f) J_k dω_k/dt + <λ, e_j × r>_{P_k}, or the seed's kinematic
@@ -88,11 +88,11 @@ namespace fdparticle
     const ParticleSet<dim> &      particles;
     const CutCellQuadrature<dim> &quadrature;
     MappingQ<dim>                 mapping{1};
-    double                        fluid_penalty = 1.0;
-    double                        strain_penalty = 0.05;
-    double                        penalty_ramp = 0.0;
+    double                        fluid_penalty = 0.01;
+    double                        strain_penalty = 0.15;
+    double                        penalty_ramp = 0.2;
     double                        pairing_time_step = 0.0; // 0: α = ρ c0 of the current step
-    double                        interior_pressure_penalty = 1.0;
+    double                        interior_pressure_penalty = 1e-3;
     Point<dim>                    pressure_reference;
   };
 } // namespace fdparticle
