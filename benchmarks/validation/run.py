@@ -57,6 +57,8 @@ class Runner:
         if not os.path.exists(done):
             return None
         stats = read_rows(done)
+        if not stats:  # the run died before its first step (e.g. out of memory)
+            return None
         parts = read_rows(os.path.join(out, "particles.csv"))
         return parts, stats, int(stats[-1]["dofs"]), sum(r["wall_seconds"] for r in stats)
 
