@@ -218,8 +218,12 @@ namespace fdparticle
     // Writable ghost entries: cells at a partition boundary add into DoFs owned by a
     // neighbour, and compress(add) ships them there.
     r_fe.reinit(owned, relevant, comm, /*vector_writable=*/true);
-    B.assign(m, r_fe);
-    C.assign(m, r_fe);
+    // Fresh copies, not assignment: assigning a Trilinos vector to one whose old layout has
+    // the same size and local range imports into that old layout, and after a mesh
+    // adaptation in parallel the owned index sets can differ with equal ranges, so the
+    // border vectors would keep the previous partition.
+    B = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
+    C = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
     D.setZero(m, m);
     r_p.setZero(m);
   }
