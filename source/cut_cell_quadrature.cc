@@ -7,6 +7,18 @@ namespace fdparticle
 {
   namespace
   {
+    /**
+     * A box goes to deal.II's generator only if, in some direction d, the gap between the
+     * ball's centre X and the box is at least this fraction of the distance from X to the
+     * box's farthest corner: then |∂ψ/∂x_d| is bounded away from zero relative to |∇ψ| and
+     * d is a height direction with a bounded slope. Closer boxes are split. Measured on
+     * balls with R/h = 1.2 and 2.4 (tests/unit/level_set_quadrature.cc), the errors at
+     * Level set order 6 are the same for 0.15 to 0.3 (worst 6.7e-6 at R/h = 1.2 in 3D,
+     * 2e-8 at 2.4); 0 (no splitting) leaves cells 44 % wrong, 0.35 splits into boxes the
+     * generator handles worse (9e-6 on a whole cell). 0.2 sits inside that plateau.
+     */
+    constexpr double min_height_slope = 0.2;
+
     /// ψ(x) = |x − X|² − R²: the ball is ψ < 0. Smooth everywhere (unlike the signed
     /// distance, whose gradient is singular at the centre a small ball's cell contains).
     template <int dim>
@@ -118,40 +130,109 @@ namespace fdparticle
   }
 
   template <int dim>
+  void CutCellQuadrature<dim>::append_ball_rules(const BoundingBox<dim> &box,
+                                                 const Particle<dim> &    particle,
+                                                 std::vector<Point<dim>> &inside_points,
+                                                 std::vector<double> &    inside_weights,
+                                                 std::vector<Point<dim>> &outside_points,
+                                                 std::vector<double> &    outside_weights) const
+  {
+    const Point<dim> &X = particle.geometry_center;
+    const auto        append = [](const Quadrature<dim> &q, std::vector<Point<dim>> &points,
+                           std::vector<double> &weights) {
+      points.insert(points.end(), q.get_points().begin(), q.get_points().end());
+      weights.insert(weights.end(), q.get_weights().begin(), q.get_weights().end());
+    };
+    // The farthest corner from X, and the largest gap between X and the box in one
+    // direction d: ∂ψ/∂x_d = 2(x_d − X_d) is at least twice that on the box.
+    double far2 = 0, gap = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        far2 += std::pow(std::max(X[d] - box.lower_bound(d), box.upper_bound(d) - X[d]), 2);
+        gap = std::max(gap, std::max(box.lower_bound(d) - X[d], X[d] - box.upper_bound(d)));
+      }
+    if (far2 < particle.radius * particle.radius)
+      {
+        // The box lies in the ball: the tensor rule is exact for the Q2 integrands.
+        const QGauss<dim> gauss(level_set_order);
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            Point<dim> x;
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = box.lower_bound(d) + box.side_length(d) * gauss.point(q)[d];
+            inside_points.push_back(x);
+            inside_weights.push_back(gauss.weight(q) * box.volume());
+          }
+        return;
+      }
+    if (gap >= min_height_slope * std::sqrt(far2))
+      {
+        generator->generate(BallLevelSet<dim>(X, particle.radius), box);
+        append(generator->get_inside_quadrature(), inside_points, inside_weights);
+        append(generator->get_outside_quadrature(), outside_points, outside_weights);
+        return;
+      }
+    // Split where the centre is strictly inside the box (children have it at a corner),
+    // else in halves. Children far from X (relative to their size) have a height direction;
+    // those next to X shrink until they lie in the ball, after about log2(h sqrt(dim) / R)
+    // halvings, so the recursion is shallow.
+    bool centre_interior = false;
+    for (unsigned int d = 0; d < dim; ++d)
+      centre_interior = centre_interior || (X[d] > box.lower_bound(d) && X[d] < box.upper_bound(d));
+    std::array<std::vector<std::pair<double, double>>, dim> pieces;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double lo = box.lower_bound(d), hi = box.upper_bound(d);
+        const double at = centre_interior ? X[d] : 0.5 * (lo + hi);
+        if (at > lo && at < hi)
+          pieces[d] = {{lo, at}, {at, hi}};
+        else
+          pieces[d] = {{lo, hi}};
+      }
+    std::array<unsigned int, dim> index{};
+    for (;;)
+      {
+        Point<dim> lower, upper;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lower[d] = pieces[d][index[d]].first;
+            upper[d] = pieces[d][index[d]].second;
+          }
+        append_ball_rules(BoundingBox<dim>(std::make_pair(lower, upper)), particle,
+                          inside_points, inside_weights, outside_points, outside_weights);
+        unsigned int d = 0;
+        while (d < dim && ++index[d] == pieces[d].size())
+          index[d++] = 0;
+        if (d == dim)
+          break;
+      }
+  }
+
+  template <int dim>
   void CutCellQuadrature<dim>::generate_level_set_rule(
     const typename Triangulation<dim>::cell_iterator &cell, const Particle<dim> &particle,
     const int k, CellRule &rule) const
   {
-    const BoundingBox<dim> box = cell->bounding_box();
-    generator->generate(BallLevelSet<dim>(particle.geometry_center, particle.radius), box);
+    const BoundingBox<dim>  box = cell->bounding_box();
+    std::vector<Point<dim>> points[2];
+    std::vector<double>     weights[2];
+    append_ball_rules(box, particle, points[0], weights[0], points[1], weights[1]);
     // Our cells are axis-aligned boxes, so x = lower + h ⊙ ξ maps the rules to the unit cell
     // and the weights scale with 1/|cell|.
-    const Point<dim> lower = box.get_boundary_points().first;
-    Tensor<1, dim>   h;
-    double           volume = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        h[d] = box.upper_bound(d) - box.lower_bound(d);
-        volume *= h[d];
-      }
-    std::vector<Point<dim>> points;
-    std::vector<double>     weights;
+    std::vector<Point<dim>> unit_points;
+    std::vector<double>     unit_weights;
     rule.owner.clear();
-    for (const bool inside : {true, false})
-      {
-        const Quadrature<dim> &q =
-          inside ? generator->get_inside_quadrature() : generator->get_outside_quadrature();
-        for (unsigned int i = 0; i < q.size(); ++i)
-          {
-            Point<dim> xi;
-            for (unsigned int d = 0; d < dim; ++d)
-              xi[d] = (q.point(i)[d] - lower[d]) / h[d];
-            points.push_back(xi);
-            weights.push_back(q.weight(i) / volume);
-            rule.owner.push_back(inside ? k : -1);
-          }
-      }
-    rule.cell_specific = Quadrature<dim>(points, weights);
+    for (const unsigned int part : {0, 1})
+      for (unsigned int i = 0; i < points[part].size(); ++i)
+        {
+          Point<dim> xi;
+          for (unsigned int d = 0; d < dim; ++d)
+            xi[d] = (points[part][i][d] - box.lower_bound(d)) / box.side_length(d);
+          unit_points.push_back(xi);
+          unit_weights.push_back(weights[part][i] / box.volume());
+          rule.owner.push_back(part == 0 ? k : -1);
+        }
+    rule.cell_specific = Quadrature<dim>(unit_points, unit_weights);
     rule.quadrature = &rule.cell_specific;
     rule.owners_known = true;
   }

@@ -478,9 +478,11 @@ namespace fdparticle
   }
 
   template <int dim>
-  IndexSet NavierStokesAssembler<dim>::active_multiplier_dofs(const DoFHandler<dim> &dof_handler,
-                                                              const IndexSet &locally_relevant) const
+  typename NavierStokesAssembler<dim>::ParticleSupport
+  NavierStokesAssembler<dim>::particle_support(const DoFHandler<dim> &dof_handler,
+                                               const IndexSet &       locally_relevant) const
   {
+    bool any_inside = false;
     LinearAlgebra::distributed::Vector<double> marker(dof_handler.locally_owned_dofs(),
                                                       locally_relevant,
                                                       dof_handler.get_communicator());
@@ -496,6 +498,7 @@ namespace fdparticle
         quadrature.reinit(cell, particles, rule);
         if (rule.kind == CellKind::fluid)
           continue;
+        any_inside = any_inside || (rule.kind == CellKind::inside);
         if (rule.kind == CellKind::cut)
           {
             FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
@@ -514,12 +517,16 @@ namespace fdparticle
       }
     marker.compress(VectorOperation::max);
     marker.update_ghost_values();
-    IndexSet active(dof_handler.n_dofs());
+    ParticleSupport support;
+    support.active_multipliers.set_size(dof_handler.n_dofs());
     for (const auto i : locally_relevant)
       if (marker[i] > 0)
-        active.add_index(i);
-    active.compress();
-    return active;
+        support.active_multipliers.add_index(i);
+    support.active_multipliers.compress();
+    support.pressure_level_fixed =
+      interior_pressure_penalty > 0 &&
+      Utilities::MPI::logical_or(any_inside, dof_handler.get_communicator());
+    return support;
   }
 
   template <int dim>

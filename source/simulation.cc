@@ -227,7 +227,7 @@ namespace fdparticle
     TimerOutput::Scope t(*timer, "constraints");
     const FEValuesExtractors::Vector velocities(0);
     const ComponentMask              u_mask = fe.component_mask(velocities);
-    const IndexSet active = assembler.active_multiplier_dofs(dof_handler, relevant_dofs);
+    const auto support = assembler.particle_support(dof_handler, relevant_dofs);
 
     for (const bool homogeneous : {true, false})
       {
@@ -238,9 +238,14 @@ namespace fdparticle
         domain.make_wall_constraints(dof_handler, u_mask, homogeneous, c);
         // λ = 0 where its support meets no particle (seed 3.15a): not part of the solve.
         for (const auto i : multiplier_dofs)
-          if (!active.is_element(i) && !c.is_constrained(i))
+          if (!support.active_multipliers.is_element(i) && !c.is_constrained(i))
             c.add_line(i);
-        if (relevant_dofs.is_element(pressure_reference_dof) &&
+        // Pinning a pressure DoF drops the continuity equation of its cell. That is
+        // harmless only while nothing but the walls sees the pressure level: once the
+        // interior-pressure penalty acts, it fixes the level itself, and the dropped row
+        // would leave a mass source of the size of the penalty in the lower-corner cell,
+        // which breaks every mirror symmetry of a scene (doc/method.md §4).
+        if (!support.pressure_level_fixed && relevant_dofs.is_element(pressure_reference_dof) &&
             !c.is_constrained(pressure_reference_dof))
           c.add_line(pressure_reference_dof);
         c.close();

@@ -84,6 +84,19 @@ namespace fdparticle
                                  const Particle<dim> &particle, const int k,
                                  CellRule &rule) const;
 
+    /**
+     * Append to inside and outside the rules (real coordinates) of the parts of box in and
+     * out of the ball. A box whose closure holds the ball's centre is split first (at the
+     * centre, then in halves), because there the level set has no height direction and
+     * deal.II's generator falls back to rules that are wrong by up to 14 % for the Q2
+     * integrands (measured on a centre at a cell vertex) and not mirror symmetric.
+     */
+    void append_ball_rules(const BoundingBox<dim> &box, const Particle<dim> &particle,
+                           std::vector<Point<dim>> &inside_points,
+                           std::vector<double> &    inside_weights,
+                           std::vector<Point<dim>> &outside_points,
+                           std::vector<double> &    outside_weights) const;
+
     Method         cut_method = Method::gauss;
     unsigned int   n_cut_points = 7;
     unsigned int   level_set_order = 6;

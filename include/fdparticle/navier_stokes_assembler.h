@@ -67,12 +67,19 @@ namespace fdparticle
              const AffineConstraints<double> &constraints, const bool with_matrix,
              BorderedSystem &system) const;
 
-    /**
-     * Mark the λ DoFs whose support contains a quadrature point inside a particle; the
-     * others are constrained to zero (λ = 0 in the fluid, seed 3.15a).
-     */
-    IndexSet active_multiplier_dofs(const DoFHandler<dim> &dof_handler,
-                                    const IndexSet &       locally_relevant) const;
+    /// Where the particles are, as the constraints of a step need it.
+    struct ParticleSupport
+    {
+      /// λ DoFs whose support contains a quadrature point inside a particle; the others
+      /// are constrained to zero (λ = 0 in the fluid, seed 3.15a).
+      IndexSet active_multipliers;
+      /// True when the interior-pressure penalty acts on some cell (on any rank): it then
+      /// fixes the pressure level, and no pressure DoF may be pinned (doc/method.md §4).
+      bool pressure_level_fixed = false;
+    };
+
+    ParticleSupport particle_support(const DoFHandler<dim> &dof_handler,
+                                     const IndexSet &       locally_relevant) const;
 
     /// Per-cell volume fraction of particles (for output).
     Vector<float> particle_fraction(const DoFHandler<dim> &dof_handler) const;

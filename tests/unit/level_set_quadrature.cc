@@ -1,9 +1,12 @@
 // Level-set cut-cell quadrature (Quadrature/Cut cells = level set): the ball's volume,
 // ∫|x − X|² and the moment about the z axis, integrated over the unit box meshed with N
 // cells a direction exactly as the assembler does it, against the exact values, for centres
-// at random points and on a mesh vertex, an edge midpoint and a face centre. Requirement
-// (issue "Smooth particle trajectories"): 1e-6 relative at the default order (6), and
-// better as the order rises. Measured: order 4 gives 1e-6 to 2e-6 in 3D, so 6 is the default.
+// at random points and on a mesh vertex, an edge midpoint and a face centre, at R/h = 2.4
+// and 1.2. Requirement: 1e-6 relative at the default order (6) for R/h = 2.4 (1e-5 at 1.2),
+// and better as the order rises; measured: order 4 gives 1e-6 to 2e-6 in 3D at R/h = 2.4,
+// so 6 is the default. Also, per cut cell, the inside and outside rules together must
+// integrate ξ⁴η⁴(ζ⁴) exactly: at R/h = 1.2 the cells around the centre are cut, where the
+// level set has no height direction and unsplit rules were 44 % wrong.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
@@ -38,9 +41,11 @@ namespace
     return s;
   }
 
-  /// Relative errors of volume, ∫|x−X|² and ∫(x−X)_⊥z² for one ball.
+  /// Relative errors of volume, ∫|x−X|² and ∫(x−X)_⊥z² for one ball, and (last) the worst
+  /// relative error over the cut cells of ∫_K ξ_1⁴⋯ξ_d⁴ by the inside and outside rules
+  /// together (exactly 1/5^d of |K|: the Q2 integrands are polynomials of degree 4 a direction).
   template <int dim>
-  std::array<double, 3> errors(const unsigned int N, const Point<dim> &X, const double R,
+  std::array<double, 4> errors(const unsigned int N, const Point<dim> &X, const double R,
                                const unsigned int order)
   {
     ParameterHandler prm;
@@ -66,6 +71,7 @@ namespace
     FEValues<dim>       regular(mapping, fe, quadrature.regular_rule(), flags);
     typename CutCellQuadrature<dim>::CellRule rule;
     double                                    I[3] = {0, 0, 0};
+    double                                    worst_cell = 0;
     unsigned int                              n_generated = 0;
     for (const auto &cell : tria.active_cell_iterators())
       {
@@ -79,6 +85,15 @@ namespace
             own = std::make_unique<FEValues<dim>>(mapping, fe, *rule.quadrature, flags);
             fv = own.get();
             ++n_generated;
+            double whole = 0;
+            for (unsigned int q = 0; q < rule.quadrature->size(); ++q)
+              {
+                double f = rule.quadrature->weight(q);
+                for (unsigned int d = 0; d < dim; ++d)
+                  f *= std::pow(rule.quadrature->point(q)[d], 4);
+                whole += f;
+              }
+            worst_cell = std::max(worst_cell, std::abs(whole * std::pow(5.0, dim) - 1));
           }
         fv->reinit(cell);
         quadrature.assign_owners(fv->get_quadrature_points(), particles, rule);
@@ -96,7 +111,8 @@ namespace
     // ∫|r|² = d/(d+2) V R²; about z: 2D the same, 3D 2/5 V R².
     const double second = double(dim) / (dim + 2) * V * R * R;
     const double axial = (dim == 2 ? second : 0.4 * V * R * R);
-    return {{std::abs(I[0] / V - 1), std::abs(I[1] / second - 1), std::abs(I[2] / axial - 1)}};
+    return {{std::abs(I[0] / V - 1), std::abs(I[1] / second - 1), std::abs(I[2] / axial - 1),
+             worst_cell}};
   }
 
   template <int dim>
@@ -104,7 +120,7 @@ namespace
   {
     // R/h = 2.4: a coarse resolution of a particle (the seed's sediment scene has 3.2).
     const unsigned int N = 8;
-    const double       h = 1.0 / N, R = 0.3;
+    const double       h = 1.0 / N;
     std::vector<std::pair<std::string, Point<dim>>> centres;
     Point<dim> vertex, edge, face;
     for (unsigned int d = 0; d < dim; ++d)
@@ -127,19 +143,32 @@ namespace
         centres.emplace_back("at random point " + std::to_string(i + 1), p);
       }
     const char *names[3] = {"volume", "int |r|^2", "moment about z"};
-    for (const auto &[where, X] : centres)
+    // R/h = 2.4 and 1.2: at 1.2 the cells around the centre are cut, not inside.
+    for (const double R : {0.3, 0.15})
+    for (const auto &[place, X] : centres)
       {
+        const std::string where = "(R/h = " + std::to_string(R / h).substr(0, 3) + ") " + place;
         double previous = 1;
         for (const unsigned int order : {2, 4, 6, 8})
           {
             const auto e = errors<dim>(N, X, R, order);
             for (unsigned int i = 0; i < 3; ++i)
               {
-                if (order == 6) // the default 'Level set order'
-                  check(e[i] < 1e-6, std::to_string(dim) + "D ball " + where + ", order 6: " +
-                                       names[i] + " relative error " + sci(e[i]) +
-                                       " < 1e-6");
+                // The default 'Level set order'; at R/h = 1.2 a cell holds much of the
+                // sphere's curvature (measured: 6.7e-6 in 3D, 3e-8 in 2D).
+                const double bound = (R / h > 2 ? 1e-6 : 1e-5);
+                if (order == 6)
+                  check(e[i] < bound, std::to_string(dim) + "D ball " + where + ", order 6: " +
+                                        names[i] + " relative error " + sci(e[i]) + " < " +
+                                        sci(bound));
               }
+            // Inside and outside rules must tile the cell (from order 3 on, the Gauss rules
+            // they are built from are exact for degree 4): the continuity equation sums to
+            // the boundary flux only then (a cell holding the centre once had 14 % here).
+            if (order >= 3)
+              check(e[3] < 1e-12, std::to_string(dim) + "D ball " + where + ", order " +
+                                    std::to_string(order) + ": every cut cell integrates "
+                                    "xi^4 eta^4 (zeta^4) to " + sci(e[3]) + " < 1e-12");
             const double worst = std::max({e[0], e[1], e[2]});
             check(worst < previous || worst < 1e-12,
                   std::to_string(dim) + "D ball " + where + ": order " + std::to_string(order) +
