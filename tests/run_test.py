@@ -21,6 +21,15 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    left); particles.csv and the step rows of
                                    statistics.csv must equal those of the uninterrupted
   # test-restart-tolerance: REL ABS  run (default 1e-12 1e-14)
+  # test-mirror: AXIS[, AXIS]      also run the scene mirrored across the mid-plane of the
+  # test-mirror-tolerance: TOL     box normal to AXIS (x, y or z: particle positions,
+                                   Gravity, Body force, wall velocities and prescribed
+                                   motions mirrored, the faces AXIS- and AXIS+ swapped);
+                                   particles.csv and the mean velocities in statistics.csv
+                                   must be the mirror images of the first run's, to TOL
+                                   (default 1e-10) relative to the largest value of each
+                                   kind of column (positions: the box size). A scene that
+                                   is its own mirror image must so stay symmetric.
 
 The output directory set in the prm is replaced by --work/ranks-N.
 """
@@ -82,6 +91,134 @@ def run(executable, args, ranks, cwd):
         cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
     print("running:", " ".join(cmd), flush=True)
     return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+
+
+AXES = "xyz"
+# particles.csv columns by kind: (kind, component) for vectors, pseudovectors (angular
+# velocity, torque) and positions; a mirror normal to axis a negates component a of a
+# vector and the other components of a pseudovector.
+VECTOR_COLUMNS = {"v": "velocity", "f": "force", "contact_f": "force", "mean_v": "velocity"}
+PSEUDO_COLUMNS = {"w": "angular velocity", "t": "torque"}
+
+
+def split_column(name):
+    """('v', 'x') for 'vx', ('contact_f', 'y') for 'contact_fy', None for others."""
+    if len(name) >= 2 and name[-1] in AXES and name[:-1] in {**VECTOR_COLUMNS, **PSEUDO_COLUMNS}:
+        return name[:-1], name[-1]
+    if name in AXES:
+        return "position", name
+    return None
+
+
+def mirror_vector(text, a):
+    values = [float(v) for v in text.split(",")]
+    values[a] = -values[a]
+    return ", ".join(repr(v) for v in values)
+
+
+def mirror_prm(text, axis):
+    """The prm text of the scene mirrored across the box's mid-plane normal to axis."""
+    a = AXES.index(axis)
+    entries, path = {}, []
+    for line in text.splitlines():
+        line = line.split("#")[0].strip()
+        if line.startswith("subsection "):
+            path.append(line[len("subsection "):].strip())
+        elif line == "end":
+            path.pop()
+        elif line.startswith("set "):
+            name, value = line[4:].split("=", 1)
+            entries["/".join(path + [name.strip()])] = value.strip()
+    if "Geometry/Lower corner" not in entries or "Geometry/Upper corner" not in entries:
+        raise SystemExit("test-mirror needs Geometry/Lower corner and Upper corner in the prm")
+    lo = float(entries["Geometry/Lower corner"].split(",")[a])
+    hi = float(entries["Geometry/Upper corner"].split(",")[a])
+    dim = int(entries.get("Dimension", "3"))
+    particles, radii = [], []
+    for entry in entries.get("Particles/Particles", "").split(";"):
+        if not entry.strip():
+            continue
+        fields = [f.strip() for f in entry.split(":")]
+        centre = [float(v) for v in fields[0].split(",")]
+        centre[a] = lo + hi - centre[a]
+        radii.append(float(fields[1]))
+        fields[0] = ", ".join(repr(v) for v in centre)
+        if len(fields) > 4:  # prescribed: a velocity, and maybe an angular velocity
+            fields[4] = mirror_vector(fields[4], a)
+            if len(fields) > 5:
+                w = [float(v) for v in fields[5].split(",")]
+                if dim == 2:
+                    w = [-w[0]]
+                else:
+                    w = [wi if i == a else -wi for i, wi in enumerate(w)]
+                fields[5] = ", ".join(repr(v) for v in w)
+        particles.append(" : ".join(fields))
+    walls = []
+    for entry in entries.get("Boundary conditions/Wall velocities", "").split(";"):
+        if not entry.strip():
+            continue
+        face, vector = (x.strip() for x in entry.split(":", 1))
+        if face[0] == axis:
+            face = axis + ("+" if face[1] == "-" else "-")
+        walls.append(f"{face}: {mirror_vector(vector, a)}")
+    # Later 'set' lines override earlier ones.
+    extra = "\nsubsection Particles\n  set Particles = " + "; ".join(particles) + "\nend\n"
+    extra += "subsection Boundary conditions\n  set Wall velocities = " + "; ".join(walls) + "\nend\n"
+    if "Gravity" in entries:
+        extra += "set Gravity = " + mirror_vector(entries["Gravity"], a) + "\n"
+    if entries.get("Fluid/Body force", "").strip():
+        extra += "subsection Fluid\n  set Body force = " + mirror_vector(entries["Fluid/Body force"], a) + "\nend\n"
+    return text + extra, lo, hi, min(radii, default=hi - lo)
+
+
+def compare_mirrored(first_dir, mirror_dir, axis, lo, hi, radius, tol):
+    """Mismatches between a run and the run of its mirror image."""
+    a = AXES.index(axis)
+    problems = []
+    velocity_scale = 0.0  # of the particles, for the box's mean velocity (nearly zero in a closed box)
+    for fname in ("particles.csv", "statistics.csv"):
+        header, rows = read_csv(os.path.join(first_dir, fname))
+        header_m, rows_m = read_csv(os.path.join(mirror_dir, fname))
+        if header != header_m or len(rows) != len(rows_m):
+            problems.append(f"{fname}: the mirrored run has other columns or rows")
+            continue
+        kinds = {h: split_column(h) for h in header}
+        if fname == "statistics.csv":
+            kinds = {h: k for h, k in kinds.items() if k and k[0] == "mean_v"}
+        # Scale of each kind of column, over both runs.
+        scale = {}
+        for i, h in enumerate(header):
+            if h in kinds and kinds[h]:
+                family = kinds[h][0]
+                for row in rows + rows_m:
+                    scale[family] = max(scale.get(family, 0.0), abs(float(row[i])))
+        scale["position"] = hi - lo
+        # Rotation and moments are measured against what the translation makes of them
+        # on the smallest particle (radius): ω ~ |V|/R, torque ~ |F| R.
+        if fname == "particles.csv":
+            scale["w"] = max(scale.get("w", 0.0), scale.get("v", 0.0) / radius)
+            scale["t"] = max(scale.get("t", 0.0), scale.get("f", 0.0) * radius)
+            scale["contact_f"] = max(scale.get("contact_f", 0.0), scale.get("f", 0.0))
+            velocity_scale = scale.get("v", 0.0)
+        else:
+            scale["mean_v"] = max(scale.get("mean_v", 0.0), velocity_scale)
+        for i, h in enumerate(header):
+            if not kinds.get(h):
+                continue
+            family, component = kinds[h]
+            c = AXES.index(component)
+            for r, (row, row_m) in enumerate(zip(rows, rows_m)):
+                x, y = float(row[i]), float(row_m[i])
+                if family == "position":
+                    expected = lo + hi - y if c == a else y
+                elif family in PSEUDO_COLUMNS:
+                    expected = y if c == a else -y
+                else:
+                    expected = -y if c == a else y
+                if abs(x - expected) > tol * max(scale[family], 1e-300):
+                    problems.append(f"mirror {axis}: {fname} row {r + 1} column {h}: {x!r} vs "
+                                    f"{expected!r} from the mirrored run (scale {scale[family]:.3g})")
+    return problems
 
 
 def check_restart(opts, text, d, ranks, full_dir):
@@ -174,6 +311,21 @@ def main():
                 failures += compare_csv(actual, expected, rel, abs_tol)
         if "test-restart-at" in d:
             failures += check_restart(opts, text, d, ranks, out_dir)
+        if "test-mirror" in d:
+            tol = float(d.get("test-mirror-tolerance", "1e-10"))
+            for axis in (x.strip() for x in d["test-mirror"].split(",")):
+                mirrored, lo, hi, radius = mirror_prm(text, axis)
+                m_dir = out_dir + f"-mirror-{axis}"
+                m_prm = os.path.join(opts.work, f"{name}-ranks-{ranks}-mirror-{axis}.prm")
+                with open(m_prm, "w") as f:
+                    f.write(mirrored + f"\nsubsection Output\n  set Directory = {m_dir}\nend\n")
+                result = run(opts.executable, [m_prm], ranks, opts.work)
+                sys.stdout.write(result.stdout[-2000:])
+                sys.stderr.write(result.stderr[-2000:])
+                if result.returncode != 0:
+                    failures.append(f"the run mirrored in {axis} exited with {result.returncode}")
+                    continue
+                failures += compare_mirrored(out_dir, m_dir, axis, lo, hi, radius, tol)
         if "test-check" in d:
             script, *check_args = d["test-check"].split()
             script = os.path.join(HERE, script)
