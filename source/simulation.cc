@@ -12,6 +12,7 @@
 #include <fdparticle/simulation.h>
 
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -31,6 +32,20 @@ namespace fdparticle
     {
       std::ostringstream s;
       s << std::setprecision(3) << x;
+      return s.str();
+    }
+
+    /// Seconds as "42 s", "12 min" or "3.5 h", for the estimate of the time left.
+    std::string format_duration(const double seconds)
+    {
+      std::ostringstream s;
+      s << std::fixed;
+      if (seconds < 120)
+        s << std::setprecision(0) << seconds << " s";
+      else if (seconds < 2 * 3600)
+        s << std::setprecision(0) << seconds / 60 << " min";
+      else
+        s << std::setprecision(1) << seconds / 3600 << " h";
       return s.str();
     }
 
@@ -724,6 +739,24 @@ namespace fdparticle
     // Created here, not in the constructor: an input error must not trigger its warnings.
     timer = std::make_unique<TimerOutput>(comm, pcout, TimerOutput::never,
                                                 TimerOutput::wall_times);
+    try
+      {
+        run_time_loop();
+      }
+    catch (...)
+      {
+        // Released inside the handler: a TimerOutput destroyed during unwinding prints a
+        // warning about skipped MPI synchronisation after the one-line error.
+        timer.reset();
+        throw;
+      }
+    timer->print_summary();
+    timer.reset();
+  }
+
+  template <int dim>
+  void Simulation<dim>::run_time_loop()
+  {
     wall_start = wall_clock();
     if (checkpointer.resume())
       resume();
@@ -740,6 +773,8 @@ namespace fdparticle
           << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)" << std::endl;
     check_resolution();
 
+    // (simulated time, wall seconds) of the recent steps, for the estimate of the time left.
+    std::deque<std::pair<double, double>> recent;
     while (!time.finished())
       {
         const double   step_start = wall_clock();
@@ -764,17 +799,38 @@ namespace fdparticle
           write_checkpoint();
         stats.wall_seconds = wall_clock() - step_start;
         output.write_statistics_row(stats);
-        pcout << "step " << std::setw(5) << stats.step << "  t = " << std::setw(10)
-              << std::setprecision(6) << stats.time << "  Newton " << stats.nonlinear_iterations
-              << "  residual " << std::scientific << std::setprecision(3) << stats.residual
-              << std::defaultfloat << "  DoFs " << stats.dofs << "  " << std::setprecision(3)
-              << stats.wall_seconds << " s" << std::endl;
+        recent.emplace_back(stats.dt, stats.wall_seconds);
+        if (recent.size() > progress_window)
+          recent.pop_front();
+        print_step_line(stats, recent);
       }
     smoothness.write(output.directory(), pcout, Utilities::MPI::this_mpi_process(comm) == 0);
     pcout << "fdparticle: done in " << std::setprecision(4) << wall_clock() - wall_start
           << " s; output in " << output.directory() << std::endl;
-    timer->print_summary();
-    timer.reset();
+  }
+
+  template <int dim>
+  void Simulation<dim>::print_step_line(const StepStatistics &                        stats,
+                                        const std::deque<std::pair<double, double>> &recent) const
+  {
+    double simulated = 0, wall = 0;
+    for (const auto &[dt, seconds] : recent)
+      {
+        simulated += dt;
+        wall += seconds;
+      }
+    const double end = time.end_time();
+    const double left = (simulated > 0 ? (end - stats.time) * wall / simulated : 0.0);
+    pcout << "step " << std::setw(5) << stats.step << "  t = " << std::setw(10)
+          << std::setprecision(6) << stats.time << " / " << end << " (" << std::fixed
+          << std::setprecision(0) << std::setw(3) << 100 * stats.time / end << " %)"
+          << std::defaultfloat << "  Newton " << stats.nonlinear_iterations << "  residual "
+          << std::scientific << std::setprecision(3) << stats.residual << std::defaultfloat
+          << "  DoFs " << stats.dofs << "  " << std::setprecision(3) << stats.wall_seconds
+          << " s";
+    if (!time.finished())
+      pcout << "  left ~" << format_duration(left);
+    pcout << std::endl;
   }
 
   template class Simulation<2>;

@@ -24,6 +24,7 @@
 #include <fdparticle/time_stepper.h>
 #include <fdparticle/wall_repulsion.h>
 
+#include <deque>
 #include <memory>
 
 namespace fdparticle
@@ -73,6 +74,16 @@ namespace fdparticle
     /// hydrostatic_deviation and mean_velocity of stats, in one pass over the cells.
     void   field_statistics(StepStatistics &stats) const;
     void   write_output(const bool fields);
+    /// The time loop of run(), from the start (or the checkpoint) to End time.
+    void   run_time_loop();
+    /// The screen line of a step: progress, Newton, size, and the time left, estimated
+    /// from the simulated time per wall second of the recent steps.
+    void   print_step_line(const StepStatistics &                        stats,
+                           const std::deque<std::pair<double, double>> &recent) const;
+
+    /// Steps the estimate of the time left averages over: enough to smooth the noise of
+    /// single steps, few enough to follow a change of the time step or of the mesh.
+    static constexpr std::size_t progress_window = 10;
 
     MPI_Comm            comm;
     ConditionalOStream  pcout;
