@@ -1,19 +1,25 @@
-"""Terminal settling: the force from lambda balances the particle's weight rho_P |P| g
-(formulation.md, 'Summing 1 and 4-5 cancels lambda'). Analytic limit, no fit."""
+"""Terminal settling velocity of a disk midway between two walls against Faxen's drag
+(see tests/settling_force_2d.prm for the formula and its source)."""
 import math
 import sys
-from testlib import table, check, finish
+from testlib import table, check, finish, parameters
 
-rows = table(sys.argv[1], "particles.csv")
-weight = 1.5 * math.pi * 0.1**2 * 10.0
-last = rows[-5:]
-check(all(r["vy"] < -0.003 for r in last), "the disk falls (vy < -0.003 over the last 5 steps)")
-vy = [r["vy"] for r in last]
-check((max(vy) - min(vy)) / abs(sum(vy) / len(vy)) < 0.05, f"vy is steady within 5 %: {vy}")
-mean_fy = sum(r["fy"] for r in last) / len(last)
-check(abs(mean_fy / weight - 1) < 0.005,
-      f"mean F_y over the last 5 steps {mean_fy:.6f} = rho_P|P|g = {weight:.6f} within 0.5 %")
-for r in last:
-    check(abs(r["fy"] / weight - 1) < 0.01, f"t = {r['time']}: F_y = {r['fy']:.6f} within 1 %")
-    check(abs(r["fx"]) < 1e-3 * weight, f"t = {r['time']}: F_x = {r['fx']:.2e} ~ 0 (symmetry)")
+out = sys.argv[1]
+prm = parameters(out)
+rows = table(out, "particles.csv")
+centre, radius, rho_p = prm["Particles/Particles"].split(":")
+radius, rho_p = float(radius), float(rho_p)
+mu, rho_f = float(prm["Fluid/Viscosity"]), float(prm["Fluid/Density"])
+g = -float(prm["Gravity"].split(",")[1])
+half_width = (float(prm["Geometry/Upper corner"].split(",")[0]) -
+              float(prm["Geometry/Lower corner"].split(",")[0])) / 2
+k = radius / half_width
+drag = 4 * math.pi * mu / (math.log(1 / k) - 0.9157 + 1.7244 * k**2 - 1.7302 * k**4 +
+                           2.4056 * k**6 - 4.5913 * k**8)
+u_faxen = (rho_p - rho_f) * math.pi * radius**2 * g / drag
+vy = [-r["vy"] for r in rows[-2:]]
+check(abs(vy[1] - vy[0]) < 2e-3 * vy[1], f"the disk has reached its terminal velocity: {vy}")
+check(abs(vy[-1] / u_faxen - 1) < 0.015,
+      f"terminal velocity {vy[-1]:.7f} = Faxen's {u_faxen:.7f} within 1.5 % "
+      f"({100 * (vy[-1] / u_faxen - 1):+.2f} %)")
 finish()
