@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""Issue 5: fdparticle against published numbers. Runs the scenes of prm/validation/ at
+"""fdparticle against published numbers. Runs the scenes of prm/validation/ at
 increasing resolution and writes doc/validation.md (tables: reference, ours per resolution,
 relative error, d/h, DoFs, wall time), doc/validation/*.csv and doc/validation/*.png.
-References and their definitions: shared/references/README.md.
+References, their citations and definitions: doc/references/README.md.
 
 Regenerate (from the top of the repository, after scripts/build.sh):
     /usr/bin/python3 benchmarks/validation/run.py                  # ~25 min on 2 cores
@@ -22,7 +22,7 @@ from importlib.machinery import SourceFileLoader
 TOP = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 DOC = os.path.join(TOP, "doc")
-REFS = os.path.join(TOP, "..", "shared", "references")  # the project's ../shared beside the clone
+REFS = os.path.join(DOC, "references")  # published reference data (doc/references/README.md)
 
 
 def read_rows(path):
@@ -183,7 +183,7 @@ def shear(r, md):
     md.append("## 3. Free particle in simple shear, Stokes (ω = −γ̇/2)\n\n"
               "Walls y = ±0.5 slide with ±0.5 (γ̇ = 1), other directions periodic, "
               "2R/H = 0.2, neutrally buoyant particle at the centre, two BDF1 steps of Δt = 100. "
-              "The torque-balance closure (formulation.md eq. 5, our default) and the seed's "
+              "The torque-balance closure (doc/method.md (F5), our default) and the seed's "
               "kinematic closure |P|ω = ½∫_P ∇×u (seed 3.14d) side by side. "
               "`prm/validation/shear2d.prm`, `shear3d.prm`.\n\n" + table(header, rows) + "\n")
 
@@ -342,7 +342,7 @@ Written by `benchmarks/validation/run.py` (regenerate: `/usr/bin/python3
 benchmarks/validation/run.py`, ~25 min on 2 cores; ten Cate: add `--tencate E2,E4`). Each
 section below is regenerated separately (`--only NAME`); the discussion at the end is
 doc/validation/discussion.md. References, their definitions and citations:
-shared/references/README.md. Errors are (ours − reference)/reference. d/h is the particle
+doc/references/README.md. Errors are (ours − reference)/reference. d/h is the particle
 diameter over the cell size at its surface. Wall time is the solver's own (statistics.csv),
 on a shared 2-core machine with another run beside it. How forces and torques come from λ:
 doc/method.md §9 (the force on a particle is what its multiplier applies to the fluid,
