@@ -75,7 +75,7 @@ namespace fdparticle
       prm.declare_entry("Pairing time step", "0", Patterns::Anything(),
                         "dt_p >= 0. 0: the pairing <lambda, v> = int(alpha lambda.v + mu "
                         "grad lambda : grad v) uses alpha = 3 rho/(2 dt) of the current step "
-                        "(the seed, formulation.md). dt_p > 0: alpha = 3 rho/(2 dt_p) in the "
+                        "(the seed, doc/method.md §0). dt_p > 0: alpha = 3 rho/(2 dt_p) in the "
                         "pairing and in the fluid penalty, whatever dt is. Any pairing gives "
                         "the same continuous problem, but the discrete rigidity constraint "
                         "and its penalties then no longer change with dt, so a time-step "
@@ -151,7 +151,7 @@ namespace fdparticle
     const auto &p_dofs = dofs[pressure];
 
     const double         rho = fluid.density, mu = fluid.viscosity;
-    // α of the pairing <λ, v> (formulation.md); the fluid's own ρ c0 u stays in the momentum rows.
+    // α of the pairing <λ, v> (doc/method.md §0); the fluid's own ρ c0 u stays in the momentum rows.
     const double alpha = (pairing_time_step > 0 ? 1.5 * rho / pairing_time_step : rho * c[0]);
     const Tensor<1, dim> static_force = fluid.hydrostatic_gradient(); // ρ g + f
     const unsigned int   n_rot = RB::n_rotations;

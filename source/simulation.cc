@@ -273,7 +273,7 @@ namespace fdparticle
     TimerOutput::Scope t(*timer, "setup");
     // The pattern follows the constraints of this step: constrained DoFs (inactive λ,
     // walls) keep only their diagonal, so the direct solver never sees the λ block away
-    // from the particles. Couplings of formulation.md eqs. 1–3: u with everything, λ_i with u_i and λ_i
+    // from the particles. Couplings of (F1)–(F3), doc/method.md §3: u with everything, λ_i with u_i and λ_i
     // (rigidity, fluid penalty), λ_i with λ_j (strain penalty), p with u; p with p only for the diagonal of the
     // constrained pressure-level DoF (cell-local, so cheap).
     Table<2, DoFTools::Coupling> coupling(2 * dim + 1, 2 * dim + 1);
@@ -344,7 +344,7 @@ namespace fdparticle
   template <int dim>
   void Simulation<dim>::update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals)
   {
-    // formulation.md: F = ρ_f|P|(dV/dt − g) − <λ, e_i>, T = ρ_f J dω/dt − <λ, e_j × r>.
+    // doc/method.md §0, §9: F = ρ_f|P|(dV/dt − g) − <λ, e_i>, T = ρ_f J dω/dt − <λ, e_j × r>.
     const auto c = time.coefficients();
     for (unsigned int k = 0; k < particles.size(); ++k)
       {

@@ -25,8 +25,8 @@ namespace fdparticle
   };
 
   /**
-   * Where the integrals over the balls P_k are evaluated (formulation.md "Integration over
-   * particles"). A cell away from every particle gets the ordinary 3-point Gauss rule,
+   * Where the integrals over the balls P_k are evaluated (doc/method.md §6 "Integration over
+   * the particles", §7). A cell away from every particle gets the ordinary 3-point Gauss rule,
    * exact for the Q2 integrands on affine cells. A cut cell gets the seed's n-point Gauss
    * rule, and every point belongs to the particle that contains it or to the fluid
    * (χ_P tested point by point). This is the one place that decides which point lies in

@@ -33,7 +33,7 @@ namespace fdparticle
   };
 
   /**
-   * Residual and exact Jacobian of formulation.md equations 1–5 at t^{n+1}, with the
+   * Residual and exact Jacobian of equations (F1)–(F5) (doc/method.md §0, §3) at t^{n+1}, with the
    * particle geometry frozen during the step. Sign convention: the residual R is the
    * left-hand side of each equation; Newton solves J δ = −R.
    *

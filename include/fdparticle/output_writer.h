@@ -29,7 +29,7 @@ namespace fdparticle
     double       max_velocity = 0, hydrostatic_deviation = 0;
     /// Cells cut by a particle surface below the finest level (0 on a uniform mesh).
     unsigned int coarse_cut_cells = 0;
-    /// Halvings of the time step this step needed (issue 6 recovery).
+    /// Halvings of the time step this step needed (recovery from a failed step).
     unsigned int time_step_reductions = 0;
     /// Volume average of the fluid velocity over the box (superficial velocity).
     Tensor<1, 3> mean_velocity;

@@ -34,10 +34,10 @@ namespace fdparticle
     prescribed
   };
 
-  /// Closure for the angular velocity (formulation.md "Where this departs from the seed").
+  /// Closure for the angular velocity (doc/method.md §10, §11 item 1).
   enum class AngularVelocityClosure
   {
-    torque_balance, ///< eq. 5: (ρ_k − ρ_f) J dω/dt + <λ, θ × r> = 0 (default)
+    torque_balance, ///< (F5): (ρ_k − ρ_f) J dω/dt + <λ, θ × r> = 0 (default)
     kinematic       ///< seed 3.14d: |P| ω = ½ ∫_P ∇ × u
   };
 
@@ -94,7 +94,7 @@ namespace fdparticle
   /**
    * The particles of a scene (subsection Particles): parsing and validation of the list,
    * their unknowns' numbering in the particle block, and the kinematics advanced after
-   * each step (formulation.md eq. 6, with the BDF formula of the scheme for X).
+   * each step ((F6) of doc/method.md §0, with the BDF formula of the scheme for X, §2).
    */
   template <int dim>
   class ParticleSet

@@ -37,7 +37,7 @@ namespace fdparticle
   /**
    * One run of a scene: the mesh and the (u, λ, p) finite element, the constraints that
    * change with the particles, the time loop and, inside each step, Newton's method on
-   * the bordered system (formulation.md). Stokes scenes take a single linear solve a step.
+   * the bordered system (doc/method.md §3, §5, §8). Stokes scenes take a single linear solve a step.
    */
   template <int dim>
   class Simulation

@@ -12,12 +12,12 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * Time levels, step-size control and the variable-step BDF1/BDF2 formulas (formulation.md, "Equations at
-   * t^{n+1}"). With ω = Δt_n/Δt_{n-1}, BDF2 reads
+   * Time levels, step-size control and the variable-step BDF1/BDF2 formulas (doc/method.md §2).
+   * With ω = Δt_n/Δt_{n-1}, BDF2 reads
    *   dy/dt ≈ [(1+2ω)/(1+ω) y^{n+1} − (1+ω) y^n + ω²/(1+ω) y^{n−1}] / Δt_n,
    * which is 3/2, −2, 1/2 for a constant step. The first step is always BDF1.
    *
-   * Recovery (issue 6): a failed step is retried with half the step, down to the requested
+   * Recovery: a failed step is retried with half the step, down to the requested
    * step / 2^'Max time step reductions'; after each accepted step the step doubles back
    * toward the requested one. Ratios ω of 1/2 and 2 keep variable-step BDF2 zero-stable
    * (ω < 1 + √2).

@@ -29,7 +29,7 @@ namespace fdparticle
    * equals its apparent weight W: at g = ρ (1 − √(W/K)).
    *
    * The force is evaluated at the end-of-step position X^{n+1}(V) of the BDF formula
-   * (formulation.md eq. 6 as implemented), so it is implicit: its derivative enters the
+   * ((F6) as implemented, doc/method.md §2), so it is implicit: its derivative enters the
    * particle block of the Newton matrix, ∂F/∂V = (∂F/∂X) / c0. An explicit force this stiff
    * would need Glowinski's sub-cycling. Particles farther than ρ from every wall cost
    * nothing.
