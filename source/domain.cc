@@ -31,7 +31,8 @@ namespace fdparticle
     {
       prm.declare_entry("Wall velocities", "", Patterns::Anything(),
                         "';'-separated 'face: vector' entries, faces x- x+ y- y+ z- z+, "
-                        "e.g. 'y+: 1, 0, 0'. Unlisted walls are at rest (no-slip).");
+                        "e.g. 'y+: 1, 0, 0'; tangential velocities only. Unlisted walls are at "
+                        "rest (no-slip).");
     }
     prm.leave_subsection();
   }

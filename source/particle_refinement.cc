@@ -11,7 +11,8 @@ namespace fdparticle
     prm.enter_subsection("Refinement");
     {
       prm.declare_entry("Particle refinement levels", "0", Patterns::Integer(0, 8),
-                        "Extra refinement levels around particle surfaces (0: uniform mesh).");
+                        "Extra refinement levels around particle surfaces, 0 to 8, re-adapted "
+                        "as the particles move (0: the base mesh as it is).");
       prm.declare_entry("Band width", "1", Patterns::Double(0),
                         "Half-width of the refined band around each surface, in units of the "
                         "local cell size.");

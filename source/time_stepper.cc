@@ -13,7 +13,8 @@ namespace fdparticle
   {
     prm.enter_subsection("Time");
     {
-      prm.declare_entry("End time", "1", Patterns::Anything(), "Final time of the run (>= 0).");
+      prm.declare_entry("End time", "1", Patterns::Anything(), "Final time of the run (>= 0; 0: set up and write the initial state "
+                        "only).");
       prm.declare_entry("Time step", "0.1", Patterns::Anything(), "Time step Delta t > 0.");
       prm.declare_entry("Scheme", "BDF2", Patterns::Anything(),
                         "BDF1 (implicit Euler) or BDF2 (second order; its first step is BDF1).");
