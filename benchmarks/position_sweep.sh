@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# Issue 3 diagnosis: the hydrodynamic force on a disk as a function of its position.
+# Diagnosis of velocity steps: the hydrodynamic force on a disk as a function of its position.
 # A disk (R = 0.2) with prescribed velocity (0, -0.012) in a Stokes fluid, one BDF1 step of
 # 0.1 from rest on a uniform 32 x 64 mesh (h = 1/32), level-set quadrature, is placed at
 # (0.05, 1 - s h) for s = 0, 0.02, ..., 2. Everything that the step sees depends on s only
 # through the geometry, so F_y(s) shows directly whether the discrete problem changes
 # continuously as the disk moves across the mesh, and which cell events cause the steps
 # (a cell starting or stopping to be cut, a cut cell becoming inside or the reverse).
-# Variants: the multiplier settings of session 5 (no ramp, Strain penalty 0.05, interior
-# pressure penalty delta = 1), the session-5 ramp (ramp 0.2, s_e 0.15, delta = 1) and the
-# defaults (ramp 0.2, s_e 0.15, delta = 1e-3).
+# Variants: the multiplier defaults before commit 42ce90f (no ramp, Strain penalty 0.05,
+# interior pressure penalty delta = 1), the ramp as introduced in commit 13a8c20 (ramp 0.2,
+# s_e 0.15, delta = 1) and the current defaults (ramp 0.2, s_e 0.15, delta = 1e-3).
 # Writes doc/position_sweep.csv (s, F_y per variant), doc/position_sweep.png and prints the
 # RMS of the second difference of F_y over s (0 for a smooth curve sampled finely).
 # Usage: bash benchmarks/position_sweep.sh        (~6 min on 2 cores; finished runs in

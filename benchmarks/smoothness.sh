@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
-# Issue 3 evidence: the seed's sediment scene (prm/sediment.prm, 8 x 16 x 8, dt = 0.1) and
-# cavity scene (prm/cavity.prm, 10^3, dt = 0.01), or their 2D counterparts (prm/sediment2d.prm,
-# prm/cavity2d.prm: scene names sediment2d, cavity2d), in the variants
+# Smoothness of particle trajectories (doc/smoothness.md): the seed's sediment scene
+# (prm/sediment.prm, 8 x 16 x 8, dt = 0.1) and cavity scene (prm/cavity.prm, 10^3,
+# dt = 0.01), or their 2D counterparts (prm/sediment2d.prm, prm/cavity2d.prm: scene names
+# sediment2d, cavity2d), in the variants
 #   seed      uniform mesh, 7-point Gauss in cut cells (the seed's method)
 #   levelset  uniform mesh, level-set cut-cell quadrature
 #   adaptive  2 particle refinement levels, 7-point Gauss
 #   adaptls   2 particle refinement levels, level-set quadrature
-#   VARIANTold  the variant with the multiplier settings before session 6 (Penalty ramp = 0,
+#   VARIANTold  the variant with the multiplier settings before commit 42ce90f (Penalty ramp = 0,
 #             Strain penalty = 0.05, Interior pressure penalty = 1; doc/method.md §4)
-#   rampold   adaptls with the session-5 ramp (Penalty ramp = 0.2, Strain penalty = 0.15,
+#   rampold   adaptls with the ramp of commit 13a8c20 (Penalty ramp = 0.2, Strain penalty = 0.15,
 #             Interior pressure penalty = 1)
 # Each run checkpoints every 20 steps into a persistent work directory and resumes from
-# there when started again, so the long runs can be spread over several sessions.
+# there when started again, so the long runs can be spread over several invocations.
 # After the runs, doc/smoothness.csv (one row per run) and doc/smoothness_SCENE.png
 # (V_y(t) or omega_z(t) of every variant on one figure) are rewritten from whatever
 # the work directory holds (runs that have not reached their end are marked 'partial').
@@ -38,7 +39,7 @@ variant_settings() { # variant -> prm lines appended at the end (later entries w
              printf 'subsection Multiplier\n  set Interior pressure penalty = 1\nend\n' ;;
     *old) variant_settings "${1%old}"
           printf 'subsection Multiplier\n  set Penalty ramp = 0\n  set Strain penalty = 0.05\n  set Interior pressure penalty = 1\nend\n' ;;
-    long) variant_settings seed ;;  # issue 6: the seed variant continued to t = 1000
+    long) variant_settings seed ;;  # the seed variant continued to t = 1000 (doc/stability.md)
     adaptls) printf 'subsection Quadrature\n  set Cut cells = level set\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
     *) echo "unknown variant $1" >&2; exit 2 ;;
   esac
@@ -105,7 +106,7 @@ plot() { # scene column label
 plot sediment 7 'V_y'
 plot sediment2d 7 'V_y'
 plot cavity2d 6 'V_x'
-# Issue 6: the long run, height and velocity of the sphere to t = 1000.
+# The long run (doc/stability.md): height and velocity of the sphere to t = 1000.
 long="$work/sediment_long/particles.csv"
 [ -f "$long" ] && gnuplot -e "set terminal pngcairo size 900,600; set output '$top/doc/sediment_3d_long.png';
   set datafile separator ','; set multiplot layout 2,1; set grid; set xlabel 't';

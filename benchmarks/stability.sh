@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The extreme scenes of issue 6 (tests/stability_*.prm, wall_rest_2d, plus the runs too
+# The extreme scenes of doc/stability.md (tests/stability_*.prm, wall_rest_2d, plus the runs too
 # long for ctest: high Reynolds number and the 2D sediment scene to t = 1000), one after the
 # other on one rank. Writes doc/stability.csv (one row per scene: steps, wall seconds per
 # step, Newton iterations per step, time-step halvings, final particle state, exit status).

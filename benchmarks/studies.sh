@@ -15,13 +15,15 @@
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$top"
-exe="${FDPARTICLE:-$top/build/fdparticle}"
+# Paths relative to the top of the repository, so that the command each study.md records
+# holds no machine-specific directory.
+exe="${FDPARTICLE:-build/fdparticle}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 studies=("$@")
 [ ${#studies[@]} -gt 0 ] || studies=(reference_2d space_2d time_2d dt_2d space_3d space_3d_small)
 # The runs themselves (prm, output, logs) go to $STUDY_WORK (default output/studies, ignored
 # by git); rerunning with the same work directory reuses finished runs (--reuse).
-work="${STUDY_WORK:-$top/output/studies}"
+work="${STUDY_WORK:-output/studies}"
 mkdir -p "$work"
 
 study() { # BASE NAME [fdparticle-study options]: runs in $work/NAME, results in doc/studies/NAME
@@ -88,7 +90,7 @@ for study in "${studies[@]}"; do
       ;;
     space_3d_small)
       # The same with a small sphere, c = 0.008 (a = 0.124070; the box is 8 diameters):
-      # reference from the Hasimoto / Sangani & Acrivos series (shared/references/README.md,
+      # reference from the Hasimoto / Sangani & Acrivos series (doc/references/README.md,
       # good for c <~ 0.2): K = 1.524646, U = 1/(6 pi mu a K) = 0.2804548. Uniform 8^3, 16^3
       # against following 4^3 + 2, 3, 4 levels, Gauss 7 against level set (10 runs).
       array_study space_3d_small "uniform|1|0,uniform|2|0,following|0|2,following|0|3,following|0|4" 0.2804548 \

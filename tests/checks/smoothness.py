@@ -1,4 +1,4 @@
-"""The smoothness figure S of a run stays below a stored bound (issue 3; S is defined in
+"""The smoothness figure S of a run stays below a stored bound (S is defined in
 doc/method.md, "Smoothness measure"). Usage: smoothness.py OUTPUT_DIR BOUND MIN_SAMPLES"""
 import sys
 from testlib import table, check, finish

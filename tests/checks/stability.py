@@ -1,4 +1,4 @@
-"""Checks for the extreme scenes of issue 6 (tests/stability_*.prm, doc/stability.md).
+"""Checks for the extreme scenes (tests/stability_*.prm, doc/stability.md).
 
 Usage: stability.py OUTPUT_DIR MODE. Every mode first requires that every number written
 is finite and the run reached its End time. The reference scene is a disk (R = 0.2) at the

@@ -1,5 +1,5 @@
-"""Checks against published numbers (issue 5, doc/validation.md; references and their
-definitions in shared/references/README.md). The radius, viscosity, body force and
+"""Checks against published numbers (doc/validation.md; references and their
+definitions in doc/references/README.md). The radius, viscosity, body force and
 prescribed velocity are read from the run's own parameters.prm.
 
 Usage: validation.py OUTPUT_DIR MODE REF TOL

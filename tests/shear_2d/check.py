@@ -1,5 +1,5 @@
 """Free disk in simple shear, Stokes: omega_z = -gammadot/2 = -0.5 (a torque-free cylinder
-turns with the fluid's rotation rate; shared/references/README.md, Stokes limit)."""
+turns with the fluid's rotation rate; doc/references/README.md, Stokes limit)."""
 import sys
 from testlib import table, check, finish
 

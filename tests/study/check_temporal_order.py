@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""ctest temporal_order_2d: the observed temporal order of BDF1 and BDF2 (issue 4).
+"""ctest temporal_order_2d: the observed temporal order of BDF1 and BDF2 (doc/studies.md).
 
 Runs tools/fdparticle-study on tests/study/temporal_2d.prm (settling disk, Stokes, fixed
 16 x 32 mesh, level set, fixed pairing time step) for BDF1 and BDF2 with dt = 0.02, 0.01,
