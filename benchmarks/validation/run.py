@@ -283,7 +283,7 @@ def tencate(r, md, cases, levels):
     for i, (case, path) in enumerate(curves):
         ref = os.path.join(REFS, "tencate2002", f"{case}_velocity.csv")
         plots.append(f"'{path}' using 1:7 every ::1 with lines lw 2 lc {i + 1} title '{case} fdparticle'")
-        plots.append(f"'{ref}' using 1:2 every ::1 with points pt 7 ps 0.6 lc {i + 1} title '{case} experiment'")
+        plots.append(f"'{ref}' using 1:2 with points pt 7 ps 0.6 lc {i + 1} title '{case} experiment'")
     gnuplot(f"""set terminal pngcairo size 900,550; set output '{DOC}/validation/tencate.png'
 set datafile separator ','; set grid; set xlabel 't (s)'; set ylabel 'settling velocity (m/s)'
 set title 'ten Cate et al. (2002): settling velocity'; set key right top
