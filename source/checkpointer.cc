@@ -2,6 +2,7 @@
 #include <deal.II/distributed/solution_transfer.h>
 
 #include <fdparticle/checkpointer.h>
+#include <fdparticle/parameter_tools.h>
 
 #include <filesystem>
 #include <fstream>
@@ -57,6 +58,21 @@ namespace fdparticle
   }
 
   template <int dim>
+  void Checkpointer<dim>::check_directory(const MPI_Comm comm) const
+  {
+    std::string error;
+    if (Utilities::MPI::this_mpi_process(comm) == 0 &&
+        std::filesystem::exists(checkpoint_directory) &&
+        !std::filesystem::is_directory(checkpoint_directory))
+      error = "Checkpointing/Directory '" + checkpoint_directory +
+              "' is a file, not a directory; a checkpoint would replace it. Choose another "
+              "directory.";
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    if (!error.empty())
+      throw CollectiveError(error);
+  }
+
+  template <int dim>
   void Checkpointer<dim>::write(const parallel::distributed::Triangulation<dim> &tria,
                                 const DoFHandler<dim> &                           dof_handler,
                                 const std::vector<const TrilinosWrappers::MPI::Vector *> &vectors,
@@ -75,28 +91,39 @@ namespace fdparticle
         if (ec)
           error = "Cannot create checkpoint directory '" + fresh + "' (" + ec.message() + ").";
       }
+    // Errors found on rank 0 are shared, so that every rank ends normally (main.cc)
+    // instead of the others waiting for rank 0 or being aborted with it.
     error = Utilities::MPI::broadcast(comm, error, 0);
-    AssertThrow(error.empty(), ExcMessage(error));
+    if (!error.empty())
+      throw CollectiveError(error);
 
     parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer(dof_handler);
     transfer.prepare_for_serialization(vectors);
     tria.save(fresh + "/mesh");
 
     if (root)
-      {
-        std::ofstream out(fresh + "/state.txt.tmp");
-        out << magic << ' ' << dim << ' ' << n_particles << '\n' << state;
-        out.close();
-        AssertThrow(out, ExcMessage("Cannot write the checkpoint state in '" + fresh + "'."));
-        std::filesystem::rename(fresh + "/state.txt.tmp", fresh + "/state.txt");
-        // The swap: at every moment DIR or DIR.old is a complete checkpoint.
-        std::filesystem::remove_all(old);
-        if (std::filesystem::exists(checkpoint_directory))
-          std::filesystem::rename(checkpoint_directory, old);
-        std::filesystem::rename(fresh, checkpoint_directory);
-        std::filesystem::remove_all(old);
-      }
-    MPI_Barrier(comm);
+      try
+        {
+          std::ofstream out(fresh + "/state.txt.tmp");
+          out << magic << ' ' << dim << ' ' << n_particles << '\n' << state;
+          out.close();
+          if (!out)
+            throw std::runtime_error("Cannot write the checkpoint state in '" + fresh + "'.");
+          std::filesystem::rename(fresh + "/state.txt.tmp", fresh + "/state.txt");
+          // The swap: at every moment DIR or DIR.old is a complete checkpoint.
+          std::filesystem::remove_all(old);
+          if (std::filesystem::exists(checkpoint_directory))
+            std::filesystem::rename(checkpoint_directory, old);
+          std::filesystem::rename(fresh, checkpoint_directory);
+          std::filesystem::remove_all(old);
+        }
+      catch (const std::exception &e)
+        {
+          error = e.what();
+        }
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    if (!error.empty())
+      throw CollectiveError(error);
   }
 
   template <int dim>

@@ -176,16 +176,23 @@ namespace fdparticle
     // Split where the centre is strictly inside the box (children have it at a corner),
     // else in halves. Children far from X (relative to their size) have a height direction;
     // those next to X shrink until they lie in the ball, after about log2(h sqrt(dim) / R)
-    // halvings, so the recursion is shallow.
-    bool centre_interior = false;
+    // halvings, so the recursion is shallow. Halves only across the long sides: a thin
+    // slab next to X (a centre just inside a cell) split across its thin side too
+    // multiplies into 2^dim boxes a level instead of 2^(dim-1); a 3D ball of R = h/10
+    // then needed 6e5 points in one cell (3e4 now) and 2.4 GB for its FEValues.
+    bool   centre_interior = false;
+    double longest = 0;
     for (unsigned int d = 0; d < dim; ++d)
-      centre_interior = centre_interior || (X[d] > box.lower_bound(d) && X[d] < box.upper_bound(d));
+      {
+        centre_interior = centre_interior || (X[d] > box.lower_bound(d) && X[d] < box.upper_bound(d));
+        longest = std::max(longest, box.side_length(d));
+      }
     std::array<std::vector<std::pair<double, double>>, dim> pieces;
     for (unsigned int d = 0; d < dim; ++d)
       {
         const double lo = box.lower_bound(d), hi = box.upper_bound(d);
         const double at = centre_interior ? X[d] : 0.5 * (lo + hi);
-        if (at > lo && at < hi)
+        if (at > lo && at < hi && (centre_interior || hi - lo >= 0.5 * longest))
           pieces[d] = {{lo, at}, {at, hi}};
         else
           pieces[d] = {{lo, hi}};

@@ -57,16 +57,38 @@ namespace fdparticle
                                "every direction (direction " +
                                std::string(1, "xyz"[d]) + ": " + std::to_string(lower[d]) +
                                " >= " + std::to_string(upper[d]) + ")."));
+      for (unsigned int d = 0; d < dim; ++d)
+        AssertThrow(std::abs(lower[d]) <= max_length && std::abs(upper[d]) <= max_length &&
+                      upper[d] - lower[d] >= 1 / max_length,
+                    ExcMessage("Geometry: the box must lie within +-" + format_count(max_length) +
+                               " and be at least " + format_count(1 / max_length) +
+                               " wide in every direction (direction " +
+                               std::string(1, "xyz"[d]) + ": from " + format_count(lower[d]) +
+                               " to " + format_count(upper[d]) +
+                               "); choose units in which the scene's lengths are moderate "
+                               "numbers."));
       const Tensor<1, dim> n = get_tensor<dim>(prm, "Subdivisions", "Geometry/Subdivisions");
       subdivisions.resize(dim);
+      global_refinements = prm.get_integer("Global refinements");
+      double cells = std::pow(2.0, dim * global_refinements);
       for (unsigned int d = 0; d < dim; ++d)
         {
           AssertThrow(n[d] >= 1 && n[d] == std::floor(n[d]),
                       ExcMessage("Parameter 'Geometry/Subdivisions' needs integers >= 1, got " +
                                  prm.get("Subdivisions") + "."));
-          subdivisions[d] = static_cast<unsigned int>(n[d]);
+          cells *= n[d];
         }
-      global_refinements = prm.get_integer("Global refinements");
+      // Checked in floating point before the conversion, which wraps around above 2^32.
+      AssertThrow(cells <= max_cells,
+                  ExcMessage("Parameters 'Geometry/Subdivisions' = " + prm.get("Subdivisions") +
+                             " and 'Geometry/Global refinements' = " +
+                             prm.get("Global refinements") + " ask for " + format_count(cells) +
+                             " cells; fdparticle refuses meshes of more than " +
+                             format_count(max_cells) +
+                             " cells (0.1-1 TB of memory). Use fewer subdivisions or "
+                             "refinements."));
+      for (unsigned int d = 0; d < dim; ++d)
+        subdivisions[d] = static_cast<unsigned int>(n[d]);
       periodic.fill(false);
       for (const std::string &name : split(prm.get("Periodic directions"), ','))
         {
@@ -207,6 +229,15 @@ namespace fdparticle
     for (unsigned int d = 0; d < dim; ++d)
       v *= upper[d] - lower[d];
     return v;
+  }
+
+  template <int dim>
+  double Domain<dim>::n_cells() const
+  {
+    double n = std::pow(2.0, dim * global_refinements);
+    for (const unsigned int s : subdivisions)
+      n *= s;
+    return n;
   }
 
   template <int dim>

@@ -4,6 +4,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <fdparticle/output_writer.h>
+#include <fdparticle/parameter_tools.h>
 
 #include <filesystem>
 #include <iomanip>
@@ -79,7 +80,9 @@ namespace fdparticle
                       "' of the interrupted run is missing.";
       }
     error = Utilities::MPI::broadcast(comm, error, 0);
-    AssertThrow(error.empty(), ExcMessage(error));
+    // Every rank has it: end normally, not by MPI_Abort (main.cc).
+    if (!error.empty())
+      throw CollectiveError(error);
     if (!root)
       return;
 

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace fdparticle
@@ -84,6 +85,13 @@ namespace fdparticle
                               const std::string &entry_path)
     {
       return to_tensor<dim>(prm.get(name), entry_path);
+    }
+
+    std::string format_count(const double count)
+    {
+      std::ostringstream s;
+      s << std::setprecision(3) << count;
+      return s.str();
     }
 
     std::string one_line_message(const std::exception &exc)

@@ -33,6 +33,34 @@ namespace fdparticle
   }
 
   template <int dim>
+  double ParticleRefinement<dim>::estimated_cells(const Domain<dim> &      domain,
+                                                  const ParticleSet<dim> &particles) const
+  {
+    // Each pass refines the cells in_band() finds: a shell around each surface reaching
+    // band_width h + the cell diagonal sqrt(dim) h to either side; each refined cell
+    // adds 2^dim - 1. Counted in units of h (no overflow for tiny or huge boxes) and at
+    // most every cell of the level. The mesh smoothing adds a few cells more: this is an
+    // estimate to refuse absurd requests, not a prediction.
+    const double base = domain.n_cells();
+    double       cells = base;
+    double       h = domain.base_cell_size();
+    const double half_width = band_width + std::sqrt(double(dim));
+    for (unsigned int level = 0; level < n_levels; ++level, h /= 2)
+      {
+        double in_bands = 0;
+        for (unsigned int k = 0; k < particles.size(); ++k)
+          {
+            const double r = particles[k].radius / h;
+            in_bands += RigidBody<dim>::volume(r + half_width) -
+                        RigidBody<dim>::volume(std::max(0.0, r - half_width));
+          }
+        const double all = base * std::pow(2.0, dim * level);
+        cells += (std::pow(2.0, dim) - 1) * (in_bands < all ? in_bands : all);
+      }
+    return cells;
+  }
+
+  template <int dim>
   bool ParticleRefinement<dim>::in_band(const typename Triangulation<dim>::cell_iterator &cell,
                                         const ParticleSet<dim> &particles) const
   {

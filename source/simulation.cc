@@ -121,6 +121,31 @@ namespace fdparticle
     system.parse_parameters(prm);
     output.parse_parameters(prm);
     refinement.parse_parameters(prm);
+    {
+      // Refused here, before the mesh is built: an unaffordable one fails by running out of
+      // memory at an unpredictable point, on one rank only, or takes the machine down.
+      const double cells = refinement.estimated_cells(domain, particles);
+      AssertThrow(cells <= Domain<dim>::max_cells,
+                  ExcMessage("The mesh would have about " + ParameterTools::format_count(cells) +
+                             " cells (" + ParameterTools::format_count(domain.n_cells()) +
+                             " base cells, Refinement/Particle refinement levels = " +
+                             std::to_string(refinement.levels()) +
+                             " around the particles); fdparticle refuses meshes of more than " +
+                             ParameterTools::format_count(Domain<dim>::max_cells) +
+                             " cells (0.1-1 TB of memory). Use fewer particle refinement "
+                             "levels, a narrower Refinement/Band width or a coarser base mesh."));
+      const double h = domain.base_cell_size() / std::pow(2.0, refinement.levels());
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        AssertThrow(particles[k].radius >= ParticleSet<dim>::min_radius_in_cells * h,
+                    ExcMessage("Particle " + std::to_string(k + 1) + " (radius " +
+                               ParameterTools::format_count(particles[k].radius) +
+                               ") is smaller than " +
+                               ParameterTools::format_count(ParticleSet<dim>::min_radius_in_cells) +
+                               " times the finest cell edge (h = " +
+                               ParameterTools::format_count(h) +
+                               "): the mesh cannot resolve it. Refine with Geometry/Global "
+                               "refinements or Refinement/Particle refinement levels."));
+    }
     checkpointer.parse_parameters(prm, output.directory());
     repulsion.parse_parameters(prm);
     prm.enter_subsection("Solver");
@@ -384,7 +409,9 @@ namespace fdparticle
 
     double residual = assemble(true);
     stats.initial_residual = residual;
-    const double target = nonlinear_tolerance * std::max(1.0, residual);
+    // A non-finite start must not make the target infinite and the step "converged".
+    const double target =
+      nonlinear_tolerance * std::max(1.0, std::isfinite(residual) ? residual : 1.0);
     unsigned int iteration = 0;
     // Written so that a NaN residual enters the loop (NaN > target is false) and is caught there.
     while (!(residual <= target))
@@ -758,6 +785,7 @@ namespace fdparticle
   void Simulation<dim>::run_time_loop()
   {
     wall_start = wall_clock();
+    checkpointer.check_directory(comm);
     if (checkpointer.resume())
       resume();
     else

@@ -38,6 +38,14 @@ namespace fdparticle
                   ExcMessage("Parameter 'Time/Time step' must be positive, got " +
                              prm.get("Time step") + "."));
       dt_current = dt_requested;
+      // Before the run starts: a run of 10^12 steps hangs instead of failing.
+      const double n_steps = t_end / dt_requested;
+      AssertThrow(n_steps <= max_steps,
+                  ExcMessage("Parameters 'Time/End time' = " + prm.get("End time") +
+                             " and 'Time/Time step' = " + prm.get("Time step") + " ask for " +
+                             format_count(n_steps) + " time steps; fdparticle refuses more than " +
+                             format_count(max_steps) +
+                             ". Use a larger Time step or a shorter End time."));
       const std::string scheme = trim(prm.get("Scheme"));
       AssertThrow(scheme == "BDF1" || scheme == "BDF2",
                   ExcMessage("Parameter 'Time/Scheme': unknown scheme '" + scheme +

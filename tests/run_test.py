@@ -7,7 +7,8 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    particles.csv must agree between them (relative tolerance
   # test-rank-tolerance: 1e-8      given here, default 1e-8)
   # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
-                                   and leave no output directory behind
+                                   in one 'fdparticle: error' line, end every rank without
+                                   aborting MPI, and leave no output directory behind
   # test-expect-runtime-error: TEXT  the same, but the run may have written output first
   # test-args: ARGS                run 'fdparticle ARGS' instead of 'fdparticle NAME.prm'
                                    (@TESTS@ in ARGS and in the prm: the tests/ directory)
@@ -291,6 +292,9 @@ def main():
                 failures.append(f"stderr does not contain {expected!r}")
             if len([l for l in result.stderr.splitlines() if l.startswith("fdparticle: error")]) != 1:
                 failures.append("expected exactly one 'fdparticle: error' line")
+            # An error every rank knows must end each rank normally, not abort MPI.
+            if "MPI_ABORT" in result.stderr or "fdparticle: error on rank" in result.stderr:
+                failures.append("the error aborted MPI instead of ending every rank normally")
             if os.path.exists(out_dir) and not runtime:
                 failures.append(f"output directory {out_dir} was created despite the error")
             continue

@@ -35,6 +35,13 @@ namespace fdparticle
     const std::string &directory() const { return checkpoint_directory; }
 
     /**
+     * Throw a CollectiveError, on every rank, if the directory is an existing file: the
+     * swap in write() would replace it (a run that stops on an error writes a checkpoint
+     * too). Called before anything is written.
+     */
+    void check_directory(const MPI_Comm comm) const;
+
+    /**
      * Write a checkpoint of the mesh, the given vectors (with ghost entries) and the text
      * state. n_particles is recorded so a restart of a different scene is refused.
      */

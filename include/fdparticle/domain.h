@@ -28,6 +28,24 @@ namespace fdparticle
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
+    /**
+     * The most cells a mesh may have; a scene asking for more is refused before the mesh
+     * is built. 1e7 is 100 times the largest mesh run with the code (about 1e5 cells):
+     * setting up the Q2/Q2/P1 unknowns alone takes about 10 kB per cell in 2D and 90 kB
+     * in 3D (measured), so 1e7 cells need 0.1-1 TB before the direct solver's factors.
+     * A larger request is a mistake (one refinement level too many), not a scene.
+     */
+    static constexpr double max_cells = 1e7;
+
+    /**
+     * The largest coordinate, and the inverse of the narrowest box, accepted. Lengths enter
+     * squared and cubed (cell volumes, |x - X|^2) and are multiplied by densities,
+     * viscosities and 1/dt: beyond 1e+-30 a scene leaves the range of double (1e+-308)
+     * and the run ends in overflow or a stack overflow of the cut-cell quadrature. A light
+     * year is 1e16 m, a nanometre 1e-9 m: any scene in any unit lies inside.
+     */
+    static constexpr double max_length = 1e30;
+
     /// Build the (refined) base mesh and register periodic face pairs with p4est.
     void create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const;
     /// The same without the global refinements: what a checkpoint's mesh is loaded onto.
@@ -56,6 +74,8 @@ namespace fdparticle
     const Point<dim> &   upper_corner() const { return upper; }
     double               volume() const;
     unsigned int         n_global_refinements() const { return global_refinements; }
+    /// Cells of the mesh create_mesh() builds (before any particle refinement).
+    double               n_cells() const;
     /// The smallest base-mesh cell edge after the global refinements.
     double               base_cell_size() const;
     static std::string   face_name(const types::boundary_id face);

@@ -35,6 +35,10 @@ namespace fdparticle
     bool mark(parallel::distributed::Triangulation<dim> &triangulation,
               const ParticleSet<dim> &particles, const unsigned int base_level) const;
 
+    /// The number of cells once the mesh is adapted to the particles at their present
+    /// positions, estimated before building it, to refuse an unaffordable mesh.
+    double estimated_cells(const Domain<dim> &domain, const ParticleSet<dim> &particles) const;
+
     /// Whether the cell lies within the band around some particle surface.
     bool in_band(const typename Triangulation<dim>::cell_iterator &cell,
                  const ParticleSet<dim> &particles) const;

@@ -101,6 +101,17 @@ namespace fdparticle
   {
   public:
     static void declare_parameters(ParameterHandler &prm);
+
+    /**
+     * The smallest radius accepted, in units of the finest cell edge (refused in
+     * Simulation, which knows the mesh). A smaller ball fills under 1/1000 of a cell in
+     * 3D: the cut cells' Gauss points may all miss it (singular particle block), the
+     * multiplier cannot tell it from its cell, and the level-set rule recurses
+     * log2(h / R) levels deep. Scenes warn below R = h/2 already (d/h < 2); the
+     * smallest ball of the shipped scenes has R = 0.8 h.
+     */
+    static constexpr double min_radius_in_cells = 0.1;
+
     /// Reads the list and checks it against the box: inside, off the walls, no overlaps.
     void        parse_parameters(ParameterHandler &prm, const Domain<dim> &domain);
 

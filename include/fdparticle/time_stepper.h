@@ -28,6 +28,12 @@ namespace fdparticle
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
+    /// The most steps a run may ask for (End time / Time step). 1e8 is 10^4 times the
+    /// longest run made with the code (10^4 steps); more is a typo (a step in the wrong
+    /// unit), would never finish, and would outgrow the unsigned step counter (2^32) and
+    /// the round-off of the accumulated time (Δt / End time stays above 1e-8).
+    static constexpr double max_steps = 1e8;
+
     double       time() const { return t; }
     unsigned int step_number() const { return step; }
     double       end_time() const { return t_end; }
