@@ -93,6 +93,8 @@ FIXED_CHANCE = 0.1                         # per ball; as many prescribed, the r
 PRESCRIBED_CHANCE = 0.1
 CONVECTION_CHANCE = 0.6                    # Navier-Stokes, else Stokes
 KLU_CHANCE = 0.2                           # else MUMPS
+# KLU factors a 3D mesh of 18k DoFs (3 x 4 x 3 cells, one level) in 20 s: only coarser.
+KLU_MAX_FINEST_CELLS_3D = 4
 LID_CHANCE = 0.3
 # A prescribed ball moves this many finest cells over the run: it stays clear of the walls.
 PRESCRIBED_TRAVEL_CELLS = 0.25
@@ -103,8 +105,12 @@ PLACEMENT_ATTEMPTS = 200
 
 # A run that prints no line for this long counts as hung (a layout mismatch between ranks
 # can deadlock a collective): every step prints one, and a step of these scenes takes
-# seconds, tens of seconds on 3 oversubscribed ranks of a busy machine.
+# seconds, tens of seconds on 3 oversubscribed ranks of a busy machine. The later rank
+# counts also get STALL_FACTOR times the longest step of the first one: oversubscribed
+# ranks took up to 5 times as long as one rank.
 STALL_SECONDS = 180.0
+STALL_FACTOR = 10.0
+STEP_SECONDS = re.compile(r"DoFs\s+\d+\s+([0-9.eE+-]+) s")
 CRASH_LINE = re.compile(r"Signal:|signal \d|Segmentation|free\(\)|terminate called|what\(\)|Abort")
 POLL_SECONDS = 1.0
 KILL_GRACE = 10.0
@@ -200,6 +206,8 @@ def make_scene(seed, index, dim, steps_range, level_range):
     cut_rule = rng.choice(["gauss", "level set"])
     scheme = rng.choice(["BDF1", "BDF2"])
     solver = "Amesos_Klu" if rng.random() < KLU_CHANCE else "Amesos_Mumps"
+    if dim == 3 and 1.0 / h_fine > KLU_MAX_FINEST_CELLS_3D:
+        solver = "Amesos_Mumps"
     ordering = rng.choice(["metis", "auto"])
     gravity = [0.0] * dim
     gravity[1] = -rng.uniform(*GRAVITY_RANGE)
@@ -342,7 +350,14 @@ def last_step(log):
     return f", after step {steps[-1][1]} (t = {steps[-1][4]})"
 
 
-def watch(process, log, started, timeout):
+def longest_step(log):
+    """Wall seconds of the slowest step in a run's output (0 if none)."""
+    with open(log, errors="replace") as f:
+        times = [float(m.group(1)) for m in map(STEP_SECONDS.search, f) if m]
+    return max(times, default=0.0)
+
+
+def watch(process, log, started, timeout, stall):
     """(exit status, None) once the run ends; (None, why) when it hangs (then killed)."""
     size, last_output = 0, started
     while process.poll() is None:
@@ -350,15 +365,15 @@ def watch(process, log, started, timeout):
         now = time.time()
         if os.path.getsize(log) != size:
             size, last_output = os.path.getsize(log), now
-        stalled = now - last_output > STALL_SECONDS
+        stalled = now - last_output > stall
         if stalled or now - started > timeout:
             end_group(process)
-            why = f"no output for {STALL_SECONDS:g} s" if stalled else f"not done in {timeout:g} s"
+            why = f"no output for {stall:.0f} s" if stalled else f"not done in {timeout:g} s"
             return None, f"{why}{last_step(log)} (killed)"
     return process.returncode, None
 
 
-def run_fdparticle(executable, prm, ranks, cwd, timeout):
+def run_fdparticle(executable, prm, ranks, cwd, timeout, stall):
     """(status, message, seconds): status 'ok', 'error' (a clean fdparticle error), 'crash'
     or 'hang'. The run's output goes to CWD/ranks-N.log."""
     # Idle ranks yield the core: the rank counts are oversubscribed on small machines.
@@ -374,7 +389,7 @@ def run_fdparticle(executable, prm, ranks, cwd, timeout):
         process = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=err,
                                    start_new_session=True)
         try:
-            returncode, hung = watch(process, log, started, timeout)
+            returncode, hung = watch(process, log, started, timeout, stall)
         except BaseException:
             # Interrupted: take the ranks along.
             end_group(process)
@@ -538,7 +553,11 @@ def check_scene(executable, prm_text, scene_dir, ranks_list, timeout):
         with open(prm, "w") as f:
             # A later 'set' overrides an earlier one: each rank count has its own output.
             f.write(prm_text + f"\nsubsection Output\n  set Directory = {out_dir}\nend\n")
-        outcomes[ranks] = run_fdparticle(executable, prm, ranks, scene_dir, timeout)
+        stall = STALL_SECONDS
+        if outcomes:
+            first = os.path.join(scene_dir, f"ranks-{ranks_list[0]}.log")
+            stall = max(stall, STALL_FACTOR * longest_step(first))
+        outcomes[ranks] = run_fdparticle(executable, prm, ranks, scene_dir, timeout, stall)
 
     failures = []
     reference = ranks_list[0]
