@@ -4,6 +4,7 @@
 #include <fdparticle/checkpointer.h>
 #include <fdparticle/parameter_tools.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -45,6 +46,21 @@ namespace fdparticle
     prm.leave_subsection();
     if (checkpoint_directory.empty())
       checkpoint_directory = output_directory + "/checkpoint";
+    // Each checkpoint replaces its directory as a whole (write()): one that is or holds
+    // the output directory would take the tables with it.
+    const auto normal = [](const std::string &name) {
+      std::filesystem::path p = std::filesystem::absolute(name).lexically_normal();
+      return p.has_filename() ? p : p.parent_path();
+    };
+    const std::filesystem::path checkpoint = normal(checkpoint_directory),
+                                output = normal(output_directory);
+    AssertThrow(std::mismatch(checkpoint.begin(), checkpoint.end(), output.begin(), output.end())
+                    .first != checkpoint.end(),
+                ExcMessage("Checkpointing/Directory '" + checkpoint_directory +
+                           "' is or contains the output directory '" + output_directory +
+                           "'; each checkpoint replaces its directory as a whole. Choose a "
+                           "directory of its own (empty: 'checkpoint' in the output "
+                           "directory)."));
   }
 
   template <int dim>
