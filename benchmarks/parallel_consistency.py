@@ -43,6 +43,8 @@ import sys
 import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(TOP, "tests"))
+from testlib import prm_entries  # noqa: E402  (after the path it lives on)
 
 REL_TOL = 1e-8
 # Values below this fraction of the largest of their kind are compared against that
@@ -300,21 +302,6 @@ end
 
 
 # ------------------------------------------------------------------------------ prm facts
-def prm_entries(text):
-    """{'Subsection/Name': value} of a prm text; later 'set' lines win."""
-    entries, path = {}, []
-    for line in text.splitlines():
-        line = line.split("#")[0].strip()
-        if line.startswith("subsection "):
-            path.append(line[len("subsection "):].strip())
-        elif line == "end":
-            path.pop()
-        elif line.startswith("set "):
-            name, value = line[4:].split("=", 1)
-            entries["/".join(path + [name.strip()])] = value.strip()
-    return entries
-
-
 def scene_scales(text):
     """(box size, smallest radius) for the comparison scales."""
     e = prm_entries(text)

@@ -42,6 +42,8 @@ import shutil
 import subprocess
 import sys
 
+import testlib
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 IGNORED_COLUMNS = {"wall_seconds"}
 
@@ -122,16 +124,7 @@ def mirror_vector(text, a):
 def mirror_prm(text, axis):
     """The prm text of the scene mirrored across the box's mid-plane normal to axis."""
     a = AXES.index(axis)
-    entries, path = {}, []
-    for line in text.splitlines():
-        line = line.split("#")[0].strip()
-        if line.startswith("subsection "):
-            path.append(line[len("subsection "):].strip())
-        elif line == "end":
-            path.pop()
-        elif line.startswith("set "):
-            name, value = line[4:].split("=", 1)
-            entries["/".join(path + [name.strip()])] = value.strip()
+    entries = testlib.prm_entries(text)
     if "Geometry/Lower corner" not in entries or "Geometry/Upper corner" not in entries:
         raise SystemExit("test-mirror needs Geometry/Lower corner and Upper corner in the prm")
     lo = float(entries["Geometry/Lower corner"].split(",")[a])

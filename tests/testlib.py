@@ -23,18 +23,24 @@ def finish():
     sys.exit(1 if _failures else 0)
 
 
+def prm_entries(text):
+    """{'Subsection/Name': value} of the text of a parameter file; a later 'set' of an
+    entry wins, as in deal.II's ParameterHandler."""
+    values, path = {}, []
+    for line in text.splitlines():
+        line = line.split("#")[0].strip()
+        if line.startswith("subsection "):
+            path.append(line[len("subsection "):].strip())
+        elif line == "end":
+            path.pop()
+        elif line.startswith("set "):
+            name, value = line[4:].split("=", 1)
+            values["/".join(path + [name.strip()])] = value.strip()
+    return values
+
+
 def parameters(out_dir):
     """The entries of OUT_DIR/parameters.prm (written by fdparticle) as
     {'Subsection/Name': value}."""
-    values, path = {}, []
     with open(f"{out_dir}/parameters.prm") as f:
-        for line in f:
-            line = line.split("#")[0].strip()
-            if line.startswith("subsection "):
-                path.append(line[len("subsection "):].strip())
-            elif line == "end":
-                path.pop()
-            elif line.startswith("set "):
-                name, value = line[4:].split("=", 1)
-                values["/".join(path + [name.strip()])] = value.strip()
-    return values
+        return prm_entries(f.read())

@@ -41,6 +41,36 @@ namespace
     return s;
   }
 
+  /// One ball of radius R at X in the unit box of N^dim cells, cut by the level-set rule of
+  /// the given order (0: the default order).
+  template <int dim>
+  struct OneBall
+  {
+    OneBall(const unsigned int N, const Point<dim> &X, const double R,
+            const unsigned int order = 0)
+      : tria(MPI_COMM_WORLD)
+    {
+      ParameterHandler prm;
+      declare_all_parameters(prm);
+      prm.parse_input_from_string(unit_box_parameters<dim>(N) + "subsection Particles\n"
+                                  "  set Particles = " + vec(X) + " : " + std::to_string(R) +
+                                  " : 1\nend\nsubsection Quadrature\n"
+                                  "  set Cut cells = level set\n" +
+                                  (order > 0 ? "  set Level set order = " + std::to_string(order) + "\n"
+                                             : std::string()) +
+                                  "end\n");
+      domain.parse_parameters(prm);
+      particles.parse_parameters(prm, domain);
+      quadrature.parse_parameters(prm);
+      domain.create_mesh(tria);
+    }
+
+    Domain<dim>                               domain;
+    ParticleSet<dim>                          particles;
+    CutCellQuadrature<dim>                    quadrature;
+    parallel::distributed::Triangulation<dim> tria;
+  };
+
   /// Relative errors of volume, ∫|x−X|² and ∫(x−X)_⊥z² for one ball, and (last) the worst
   /// relative error over the cut cells of ∫_K ξ_1⁴⋯ξ_d⁴ by the inside and outside rules
   /// together (exactly 1/5^d of |K|: the Q2 integrands are polynomials of degree 4 a direction).
@@ -48,22 +78,9 @@ namespace
   std::array<double, 4> errors(const unsigned int N, const Point<dim> &X, const double R,
                                const unsigned int order)
   {
-    ParameterHandler prm;
-    declare_all_parameters(prm);
-    prm.parse_input_from_string(unit_box_parameters<dim>(N) +
-                                "subsection Particles\n  set Particles = " + vec(X) + " : " +
-                                std::to_string(R) +
-                                " : 1\nend\nsubsection Quadrature\n  set Cut cells = level set\n"
-                                "  set Level set order = " +
-                                std::to_string(order) + "\nend\n");
-    Domain<dim>            domain;
-    ParticleSet<dim>       particles;
-    CutCellQuadrature<dim> quadrature;
-    domain.parse_parameters(prm);
-    particles.parse_parameters(prm, domain);
-    quadrature.parse_parameters(prm);
-    parallel::distributed::Triangulation<dim> tria(MPI_COMM_WORLD);
-    domain.create_mesh(tria);
+    OneBall<dim> scene(N, X, R, order);
+    const auto  &particles = scene.particles;
+    auto        &quadrature = scene.quadrature;
 
     const MappingQ<dim> mapping(1);
     const FE_Q<dim>     fe(1);
@@ -73,7 +90,7 @@ namespace
     double                                    I[3] = {0, 0, 0};
     double                                    worst_cell = 0;
     unsigned int                              n_generated = 0;
-    for (const auto &cell : tria.active_cell_iterators())
+    for (const auto &cell : scene.tria.active_cell_iterators())
       {
         quadrature.reinit(cell, particles, rule);
         std::unique_ptr<FEValues<dim>> own;
@@ -127,25 +144,13 @@ namespace
     Point<dim>         X;
     for (unsigned int d = 0; d < dim; ++d)
       X[d] = 4 * h + h / 25;
-    ParameterHandler prm;
-    declare_all_parameters(prm);
-    prm.parse_input_from_string(unit_box_parameters<dim>(N) +
-                                "subsection Particles\n  set Particles = " + vec(X) + " : " +
-                                std::to_string(R) +
-                                " : 1\nend\nsubsection Quadrature\n  set Cut cells = level set\n"
-                                "end\n");
-    Domain<dim>            domain;
-    ParticleSet<dim>       particles;
-    CutCellQuadrature<dim> quadrature;
-    domain.parse_parameters(prm);
-    particles.parse_parameters(prm, domain);
-    quadrature.parse_parameters(prm);
-    parallel::distributed::Triangulation<dim> tria(MPI_COMM_WORLD);
-    domain.create_mesh(tria);
+    OneBall<dim> scene(N, X, R);
+    const auto  &particles = scene.particles;
+    auto        &quadrature = scene.quadrature;
     typename CutCellQuadrature<dim>::CellRule rule;
     unsigned int                              most = 0;
     double                                    volume = 0;
-    for (const auto &cell : tria.active_cell_iterators())
+    for (const auto &cell : scene.tria.active_cell_iterators())
       {
         quadrature.reinit(cell, particles, rule);
         if (rule.kind != CellKind::cut)
