@@ -1,8 +1,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <fdparticle/parameter_tools.h>
-#include <fdparticle/simulation.h>
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/core/simulation.h>
 
 #include <fstream>
 #include <iostream>

@@ -1,4 +1,4 @@
-// Unit test of fdparticle::BorderedSystem (include/fdparticle/bordered_system.h): the
+// Unit test of fdparticle::BorderedSystem (include/fdparticle/solvers/bordered_system.h): the
 // Newton correction from the Schur complement of the particle block must equal the solution
 // of the whole bordered system solved densely (Eigen, full-pivot LU), for every direct
 // solver and MUMPS ordering the parameter file can select.
@@ -15,7 +15,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
-#include <fdparticle/bordered_system.h>
+#include <fdparticle/solvers/bordered_system.h>
 
 #include "unit_check.h"
 

@@ -1,7 +1,7 @@
-// Unit test of fdparticle::CutCellQuadrature<dim> (include/fdparticle/cut_cell_quadrature.h).
+// Unit test of fdparticle::CutCellQuadrature<dim> (include/fdparticle/fem/cut_cell_quadrature.h).
 //
 // The ball volume and its second moments are integrated the way the assembler does it
-// (source/navier_stokes_assembler.cc): for every active cell, reinit() picks the rule,
+// (source/fem/navier_stokes_assembler.cc): for every active cell, reinit() picks the rule,
 // one of two FEValues (regular_rule(), cut_rule()) maps it to the cell, assign_owners()
 // tells which points lie in the particle, and JxW is summed over those points. The
 // results are compared with the exact values πR², 4/3πR³ (volume), πR⁴/2, 4/5πR⁵
@@ -16,11 +16,11 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 
-#include <fdparticle/cut_cell_quadrature.h>
-#include <fdparticle/domain.h>
-#include <fdparticle/parameter_tools.h>
-#include <fdparticle/particle_set.h>
-#include <fdparticle/simulation.h>
+#include <fdparticle/fem/cut_cell_quadrature.h>
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/particle_set.h>
+#include <fdparticle/core/simulation.h>
 
 #include "unit_check.h"
 

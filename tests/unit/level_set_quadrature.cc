@@ -16,8 +16,8 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 
-#include <fdparticle/cut_cell_quadrature.h>
-#include <fdparticle/simulation.h>
+#include <fdparticle/fem/cut_cell_quadrature.h>
+#include <fdparticle/core/simulation.h>
 
 #include "unit_check.h"
 

@@ -6,11 +6,11 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <fdparticle/domain.h>
-#include <fdparticle/fluid.h>
-#include <fdparticle/parameter_tools.h>
-#include <fdparticle/particle_set.h>
-#include <fdparticle/simulation.h>
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/core/fluid.h>
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/particle_set.h>
+#include <fdparticle/core/simulation.h>
 
 #include "unit_check.h"
 

@@ -1,4 +1,4 @@
-// Unit test of fdparticle::RigidBody<2> and RigidBody<3> (include/fdparticle/rigid_body.h).
+// Unit test of fdparticle::RigidBody<2> and RigidBody<3> (include/fdparticle/particles/rigid_body.h).
 //
 // Every expected value is computed here independently of the library: cross products by
 // the Levi-Civita symbol, gradients by central differences of that cross product, the
@@ -8,7 +8,7 @@
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/tensor.h>
 
-#include <fdparticle/rigid_body.h>
+#include <fdparticle/particles/rigid_body.h>
 
 #include "unit_check.h"
 

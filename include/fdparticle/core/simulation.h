@@ -1,0 +1,131 @@
+#ifndef fdparticle_core_simulation_h
+#define fdparticle_core_simulation_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <fdparticle/solvers/bordered_system.h>
+#include <fdparticle/io/checkpointer.h>
+#include <fdparticle/fem/cut_cell_quadrature.h>
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/core/fluid.h>
+#include <fdparticle/fem/navier_stokes_assembler.h>
+#include <fdparticle/io/output_writer.h>
+#include <fdparticle/fem/particle_refinement.h>
+#include <fdparticle/particles/particle_set.h>
+#include <fdparticle/io/smoothness_meter.h>
+#include <fdparticle/core/time_stepper.h>
+#include <fdparticle/particles/wall_repulsion.h>
+
+#include <deque>
+#include <memory>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /// Declare every parameter of the program (all dimensions share one declaration).
+  void declare_all_parameters(ParameterHandler &prm);
+
+  /**
+   * One run of a scene: the mesh and the (u, λ, p) finite element, the constraints that
+   * change with the particles, the time loop and, inside each step, Newton's method on
+   * the bordered system (doc/method.md §3, §5, §8). Stokes scenes take a single linear solve a step.
+   */
+  template <int dim>
+  class Simulation
+  {
+  public:
+    /// Reads and checks every parameter; throws a one-sentence error on bad input.
+    Simulation(ParameterHandler &prm, const MPI_Comm comm);
+    void run();
+
+    /// The result of the last step, for tests that drive a simulation directly.
+    const ParticleSet<dim> &get_particles() const { return particles; }
+
+  private:
+    /// Mesh, DoFs and initial state at t = 0, and the first output.
+    void   start();
+    /// Mesh, vectors and state from the last checkpoint (Checkpointing/Resume).
+    void   resume();
+    void   write_checkpoint();
+    /// Advance by one accepted step, retrying with smaller steps when Newton fails.
+    void   do_time_step(StepStatistics &stats);
+    /// Where the residual is largest, in words (for failure messages).
+    std::string describe_residual() const;
+    /// Warn about particles smaller than the cells they sit in.
+    void   check_resolution();
+    void   setup_dofs();
+    /// Refine around the particles (with transfer of the solution and its history).
+    void   adapt_mesh(const bool transfer);
+    void   make_constraints();
+    void   setup_matrix();
+    void   set_initial_pressure();
+    void   solve_time_step(StepStatistics &stats);
+    void   update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals);
+    double max_velocity() const;
+    /// hydrostatic_deviation and mean_velocity of stats, in one pass over the cells.
+    void   field_statistics(StepStatistics &stats) const;
+    void   write_output(const bool fields);
+    /// The time loop of run(), from the start (or the checkpoint) to End time.
+    void   run_time_loop();
+    /// The screen line of a step: progress, Newton, size, and the time left, estimated
+    /// from the simulated time per wall second of the recent steps.
+    void   print_step_line(const StepStatistics &                        stats,
+                           const std::deque<std::pair<double, double>> &recent) const;
+
+    /// Steps the estimate of the time left averages over: enough to smooth the noise of
+    /// single steps, few enough to follow a change of the time step or of the mesh.
+    static constexpr std::size_t progress_window = 10;
+
+    MPI_Comm            comm;
+    ConditionalOStream  pcout;
+    std::unique_ptr<TimerOutput> timer;
+    ParameterHandler &  prm;
+
+    Domain<dim>            domain;
+    Fluid<dim>             fluid;
+    ParticleSet<dim>       particles;
+    TimeStepper            time;
+    CutCellQuadrature<dim> quadrature;
+    OutputWriter<dim>      output;
+    ParticleRefinement<dim> refinement;
+    SmoothnessMeter<dim>   smoothness;
+    Checkpointer<dim>      checkpointer;
+    WallRepulsion<dim>     repulsion;
+    unsigned int           base_level = 0;
+    BorderedSystem         system;
+
+    double       nonlinear_tolerance = 1e-10;
+    unsigned int max_nonlinear_iterations = 20;
+    bool         line_search = true;
+    bool         reuse_jacobian = true;
+    bool         hydrostatic_start = false;
+
+    parallel::distributed::Triangulation<dim> triangulation;
+    FESystem<dim>                             fe;
+    DoFHandler<dim>                           dof_handler;
+    NavierStokesAssembler<dim>                assembler;
+
+    IndexSet                  owned_dofs, relevant_dofs, velocity_dofs, multiplier_dofs;
+    AffineConstraints<double> static_constraints;  ///< hanging nodes + periodicity
+    AffineConstraints<double> update_constraints;  ///< homogeneous: Newton corrections
+    AffineConstraints<double> state_constraints;   ///< wall velocities: the solution itself
+    types::global_dof_index   pressure_reference_dof = 0;
+    Point<dim>                pressure_reference_point;
+
+    TrilinosWrappers::MPI::Vector solution, old_solution, old_old_solution;
+    TrilinosWrappers::MPI::Vector solution_ghost, history_ghost;
+    std::vector<ParticleIntegrals<dim>> last_integrals;
+    double                              wall_start = 0;
+  };
+} // namespace fdparticle
+
+#endif

@@ -1,0 +1,157 @@
+#ifndef fdparticle_particles_particle_set_h
+#define fdparticle_particles_particle_set_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/particles/rigid_body.h>
+#include <fdparticle/core/time_stepper.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /// How a particle moves: by its force and torque balance, not at all, or with a given
+  /// constant velocity and angular velocity. Only free particles have particle equations;
+  /// the force and torque of all are reported.
+  enum class ParticleMotion
+  {
+    free,
+    fixed,
+    prescribed
+  };
+
+  /// Closure for the angular velocity (doc/method.md §10, §11 item 1).
+  enum class AngularVelocityClosure
+  {
+    torque_balance, ///< (F5): (ρ_k − ρ_f) J dω/dt + <λ, θ × r> = 0 (default)
+    kinematic       ///< seed 3.14d: |P| ω = ½ ∫_P ∇ × u
+  };
+
+  /// One rigid sphere (3D) or disk (2D) and its time history.
+  template <int dim>
+  struct Particle
+  {
+    unsigned int   id = 0;
+    ParticleMotion motion = ParticleMotion::free;
+    double         radius = 0, density = 0;
+
+    /// X^n and X^{n−1}; geometry_center is where the ball sits during the current step.
+    Point<dim> position, position_old, geometry_center;
+    /// V and ω: current iterate (t^{n+1} during a step) and the two previous levels.
+    Tensor<1, dim> velocity, velocity_old, velocity_old2;
+    Tensor<1, 3>   omega, omega_old, omega_old2;
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+
+    /// Hydrodynamic force (buoyancy included) and torque of the last step.
+    Tensor<1, dim> force;
+    Tensor<1, 3>   torque;
+    /// Wall repulsion of the last step (WallRepulsion), not part of 'force'.
+    Tensor<1, dim> contact_force;
+
+    /// Offset of (V, ω) in the particle block; numbers::invalid_unsigned_int if not free.
+    unsigned int first_unknown = numbers::invalid_unsigned_int;
+
+    /// X^{n+1} from the BDF formula for dX/dt = V with coefficients c (Euler for BDF1).
+    Point<dim> position_after_step(const std::array<double, 3> &c) const
+    {
+      return Point<dim>((velocity - c[1] * position - c[2] * position_old) / c[0]);
+    }
+
+    double volume() const { return RigidBody<dim>::volume(radius); }
+    double inertia() const { return RigidBody<dim>::inertia(radius); }
+    bool   contains(const Point<dim> &x) const
+    {
+      return (x - geometry_center).norm_square() < radius * radius;
+    }
+    /// Distance from the centre to the nearest point of box (0 if the centre is inside).
+    double distance_to(const BoundingBox<dim> &box) const
+    {
+      double d2 = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double c = geometry_center[d];
+          const double e = std::max({box.lower_bound(d) - c, 0.0, c - box.upper_bound(d)});
+          d2 += e * e;
+        }
+      return std::sqrt(d2);
+    }
+  };
+
+  /**
+   * The particles of a scene (subsection Particles): parsing and validation of the list,
+   * their unknowns' numbering in the particle block, and the kinematics advanced after
+   * each step ((F6) of doc/method.md §0, with the BDF formula of the scheme for X, §2).
+   */
+  template <int dim>
+  class ParticleSet
+  {
+  public:
+    static void declare_parameters(ParameterHandler &prm);
+
+    /**
+     * The smallest radius accepted, in units of the finest cell edge (refused in
+     * Simulation, which knows the mesh). A smaller ball fills under 1/1000 of a cell in
+     * 3D: the cut cells' Gauss points may all miss it (singular particle block), the
+     * multiplier cannot tell it from its cell, and the level-set rule recurses
+     * log2(h / R) levels deep. Scenes warn below R = h/2 already (d/h < 2); the
+     * smallest ball of the shipped scenes has R = 0.8 h.
+     */
+    static constexpr double min_radius_in_cells = 0.1;
+
+    /// Reads the list and checks it against the box: inside, off the walls, no overlaps.
+    void        parse_parameters(ParameterHandler &prm, const Domain<dim> &domain);
+
+    unsigned int              size() const { return particles.size(); }
+    bool                      empty() const { return particles.empty(); }
+    Particle<dim> &           operator[](const unsigned int k) { return particles[k]; }
+    const Particle<dim> &     operator[](const unsigned int k) const { return particles[k]; }
+    AngularVelocityClosure    closure() const { return angular_closure; }
+
+    /// Size of the particle block: dim + n_rotations per free particle.
+    unsigned int n_unknowns() const { return n_block_unknowns; }
+
+    /// Index of the particle containing x during this step, or -1 (fluid).
+    int locate(const Point<dim> &x) const;
+
+    /// Put each ball at its (extrapolated) position for the coming step.
+    void prepare_step(const TimeStepper &time);
+    /// Copy the particle block into (V, ω) of the free particles, and back.
+    void set_unknowns(const Eigen::VectorXd &y);
+    Eigen::VectorXd get_unknowns() const;
+    /// Accept the step: move the balls with the BDF formula, rotate, shift the history.
+    void finish_step(const TimeStepper &time);
+
+    /**
+     * Throw a one-sentence error if a ball touches a wall, crosses a periodic boundary or
+     * overlaps another ball: fdparticle has no contact model yet, and past that point the
+     * results would be meaningless. Called after each step (and by parse_parameters).
+     */
+    void check_positions(const Domain<dim> &domain, const double time) const;
+
+    /// The state of every particle (positions, velocity histories, orientation, forces)
+    /// as exact text, for checkpoints; load() expects the same particles.
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
+
+  private:
+    std::vector<Particle<dim>> particles;
+    AngularVelocityClosure     angular_closure = AngularVelocityClosure::torque_balance;
+    unsigned int               n_block_unknowns = 0;
+  };
+} // namespace fdparticle
+
+#endif

@@ -1,0 +1,77 @@
+#ifndef fdparticle_particles_wall_repulsion_h
+#define fdparticle_particles_wall_repulsion_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/core/fluid.h>
+#include <fdparticle/particles/particle_set.h>
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * Short-range particle–wall repulsion (subsection Wall repulsion), after Glowinski et al.,
+   * J. Comput. Phys. 169 (2001) 363–426, eq. (2.7): a force normal to each wall that grows
+   * quadratically as the gap g between the ball and the wall shrinks below the range ρ,
+   *
+   *   F = K (1 − g/ρ)² n   for g < ρ,   0 otherwise,
+   *
+   * n the wall's inward normal. Glowinski writes (1/ε)(ρ − g)²; K = ρ²/ε is the force at
+   * contact, so the parameters read as a length and a force. A settling ball rests where F
+   * equals its apparent weight W: at g = ρ (1 − √(W/K)).
+   *
+   * The force is evaluated at the end-of-step position X^{n+1}(V) of the BDF formula
+   * ((F6) as implemented, doc/method.md §2), so it is implicit: its derivative enters the
+   * particle block of the Newton matrix, ∂F/∂V = (∂F/∂X) / c0. An explicit force this stiff
+   * would need Glowinski's sub-cycling. Particles farther than ρ from every wall cost
+   * nothing.
+   */
+  template <int dim>
+  class WallRepulsion
+  {
+  public:
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+
+    /// Resolve the 'auto' defaults: ρ = h_finest, K = 100 × apparent weight of each ball.
+    void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
+                    const ParticleSet<dim> &particles, const double finest_cell_size);
+
+    bool enabled() const { return on; }
+
+    /**
+     * Subtract F(X^{n+1}(V)) from the force-balance rows of the free particles (their
+     * residual is ρ-weighted acceleration + λ-force − F), and −∂F/∂V from the diagonal
+     * block. Also stores F in each particle's contact_force for output.
+     */
+    void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
+                              Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+
+  private:
+    /// Gap and inward normal for every wall the ball at X is within range of.
+    struct Contact
+    {
+      double         gap;
+      Tensor<1, dim> normal;
+    };
+    std::vector<Contact> contacts(const Particle<dim> &P, const Point<dim> &X) const;
+
+    bool                  on = true;
+    /// The entries as read; a negative value stands for 'auto'.
+    double                range_entry = -1, stiffness_entry = -1;
+    double                rho = 0;
+    std::vector<double>   stiffness; // K per particle
+    Point<dim>            lower, upper;
+    std::array<bool, dim> wall_direction{};
+  };
+} // namespace fdparticle
+
+#endif

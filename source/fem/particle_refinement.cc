@@ -1,0 +1,135 @@
+#include <deal.II/base/mpi.h>
+
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/fem/particle_refinement.h>
+
+namespace fdparticle
+{
+  template <int dim>
+  void ParticleRefinement<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Refinement");
+    {
+      prm.declare_entry("Particle refinement levels", "0", Patterns::Integer(0, 8),
+                        "Extra refinement levels around particle surfaces, 0 to 8, re-adapted "
+                        "as the particles move (0: the base mesh as it is).");
+      prm.declare_entry("Band width", "1", Patterns::Double(0),
+                        "Half-width of the refined band around each surface, in units of the "
+                        "local cell size.");
+      prm.declare_entry("Refinement interval", "1", Patterns::Integer(1),
+                        "Adapt the mesh to the particles every N steps.");
+    }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void ParticleRefinement<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Refinement");
+    n_levels = prm.get_integer("Particle refinement levels");
+    band_width = prm.get_double("Band width");
+    interval = prm.get_integer("Refinement interval");
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  double ParticleRefinement<dim>::estimated_cells(const Domain<dim> &      domain,
+                                                  const ParticleSet<dim> &particles) const
+  {
+    // Each pass refines the cells in_band() finds: a shell around each surface reaching
+    // band_width h + the cell diagonal sqrt(dim) h to either side; each refined cell
+    // adds 2^dim - 1. Counted in units of h (no overflow for tiny or huge boxes) and at
+    // most every cell of the level. The mesh smoothing adds a few cells more: this is an
+    // estimate to refuse absurd requests, not a prediction.
+    const double base = domain.n_cells();
+    double       cells = base;
+    double       h = domain.base_cell_size();
+    const double half_width = band_width + std::sqrt(double(dim));
+    for (unsigned int level = 0; level < n_levels; ++level, h /= 2)
+      {
+        double in_bands = 0;
+        for (unsigned int k = 0; k < particles.size(); ++k)
+          {
+            const double r = particles[k].radius / h;
+            in_bands += RigidBody<dim>::volume(r + half_width) -
+                        RigidBody<dim>::volume(std::max(0.0, r - half_width));
+          }
+        const double all = base * std::pow(2.0, dim * level);
+        cells += (std::pow(2.0, dim) - 1) * (in_bands < all ? in_bands : all);
+      }
+    return cells;
+  }
+
+  template <int dim>
+  bool ParticleRefinement<dim>::in_band(const typename Triangulation<dim>::cell_iterator &cell,
+                                        const ParticleSet<dim> &particles) const
+  {
+    // Distance from the surface |x − X| = R to the cell's box, against band × diameter.
+    const auto   box = cell->bounding_box();
+    const double h = cell->diameter() / std::sqrt(double(dim));
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &p = particles[k];
+        // The box's farthest point from the centre: the far corner in every direction.
+        double far2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
+                                    std::abs(p.geometry_center[d] - box.upper_bound(d))),
+                           2);
+        const double margin = band_width * h;
+        if (p.distance_to(box) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
+          return true;
+      }
+    return false;
+  }
+
+  template <int dim>
+  bool ParticleRefinement<dim>::mark(parallel::distributed::Triangulation<dim> &triangulation,
+                                     const ParticleSet<dim> &particles,
+                                     const unsigned int      base_level) const
+  {
+    bool changed = false;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          // Coarsen only where the parent would not be refined again: a child can leave
+          // the band (its own margin is smaller) while its parent is still in it, and the
+          // mesh would flip between the two every step.
+          if (in_band(cell, particles))
+            {
+              if (cell->level() < int(base_level + n_levels))
+                {
+                  cell->set_refine_flag();
+                  changed = true;
+                }
+            }
+          else if (cell->level() > int(base_level) && !in_band(cell->parent(), particles))
+            {
+              cell->set_coarsen_flag();
+              changed = true;
+            }
+        }
+    return Utilities::MPI::logical_or(changed, triangulation.get_communicator());
+  }
+
+  template <int dim>
+  unsigned int ParticleRefinement<dim>::coarse_cut_cells(
+    const parallel::distributed::Triangulation<dim> &triangulation,
+    const ParticleSet<dim> &particles, const unsigned int base_level) const
+  {
+    unsigned int n = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->level() < int(base_level + n_levels))
+        for (unsigned int k = 0; k < particles.size(); ++k)
+          {
+            bool inside = false, outside = false;
+            for (const unsigned int v : cell->vertex_indices())
+              (particles[k].contains(cell->vertex(v)) ? inside : outside) = true;
+            n += (inside && outside);
+          }
+    return Utilities::MPI::sum(n, triangulation.get_communicator());
+  }
+
+  template class ParticleRefinement<2>;
+  template class ParticleRefinement<3>;
+} // namespace fdparticle

@@ -1,0 +1,255 @@
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/particle_set.h>
+
+#include <iomanip>
+#include <istream>
+#include <ostream>
+
+namespace fdparticle
+{
+  template <int dim>
+  void ParticleSet<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Particles");
+    {
+      prm.declare_entry("Particles", "", Patterns::Anything(),
+                        "';'-separated entries 'x, y, z : radius : density [: motion]' "
+                        "(2D: 'x, y : ...'), motion = free (default: force and torque "
+                        "balance), fixed, or 'prescribed : vx, vy, vz [: wx, wy, wz]' "
+                        "(constant velocity and angular velocity; 2D: 'vx, vy [: wz]'). "
+                        "Empty: plain (Navier-)Stokes flow.");
+      prm.declare_entry("Angular velocity closure", "torque balance",
+                        Patterns::Selection("torque balance|kinematic"),
+                        "torque balance: (rho_k - rho_f) J dw/dt + <lambda, theta x r> = 0; "
+                        "kinematic: the seed's |P| w = 1/2 int_P curl u.");
+    }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::parse_parameters(ParameterHandler &prm, const Domain<dim> &domain)
+  {
+    using namespace ParameterTools;
+    particles.clear();
+    prm.enter_subsection("Particles");
+    {
+      angular_closure = (prm.get("Angular velocity closure") == "kinematic" ?
+                           AngularVelocityClosure::kinematic :
+                           AngularVelocityClosure::torque_balance);
+      const std::string list = prm.get("Particles");
+      if (!trim(list).empty())
+        for (const std::string &entry : split(list, ';'))
+          {
+            const std::string name =
+              "Particles/Particles (entry " + std::to_string(particles.size() + 1) + ")";
+            AssertThrow(!entry.empty(),
+                        ExcMessage("Parameter '" + name +
+                                   "' is empty; entries are 'x, y[, z] : radius : density'."));
+            const std::vector<std::string> fields = split(entry, ':');
+            const std::string form = "'centre : radius : density [: free | fixed | "
+                                     "prescribed : velocity [: angular velocity]]'";
+            AssertThrow(fields.size() >= 3 && fields.size() <= 6,
+                        ExcMessage("Parameter '" + name + "': '" + entry +
+                                   "' is not of the form " + form + "."));
+            Particle<dim> p;
+            p.id = particles.size();
+            p.position = Point<dim>(to_tensor<dim>(fields[0], name + " centre"));
+            p.radius = to_double(fields[1], name + " radius");
+            p.density = to_double(fields[2], name + " density");
+            AssertThrow(p.radius > 0, ExcMessage("Parameter '" + name +
+                                                 "': the radius must be positive, got " +
+                                                 fields[1] + "."));
+            AssertThrow(p.density > 0, ExcMessage("Parameter '" + name +
+                                                  "': the density must be positive, got " +
+                                                  fields[2] + "."));
+            if (fields.size() >= 4)
+              {
+                const std::string &motion = fields[3];
+                AssertThrow(motion == "free" || motion == "fixed" || motion == "prescribed",
+                            ExcMessage("Parameter '" + name + "': motion '" + motion +
+                                       "' is not 'free', 'fixed' or 'prescribed'."));
+                AssertThrow((motion == "prescribed") == (fields.size() >= 5),
+                            ExcMessage("Parameter '" + name + "': '" + entry + "': " +
+                                       (motion == "prescribed" ?
+                                          "'prescribed' needs a velocity after it" :
+                                          "only 'prescribed' takes a velocity") +
+                                       "; the form is " + form + "."));
+                p.motion = (motion == "fixed"      ? ParticleMotion::fixed :
+                            motion == "prescribed" ? ParticleMotion::prescribed :
+                                                     ParticleMotion::free);
+              }
+            if (p.motion == ParticleMotion::prescribed)
+              {
+                // Given (V, ω) are held in the velocity histories, so the BDF formula of
+                // finish_step() moves the ball with V exactly (constant V) and the
+                // assembler sees them as it sees a solved-for velocity.
+                p.velocity = to_tensor<dim>(fields[4], name + " velocity");
+                if (fields.size() == 6)
+                  {
+                    const Tensor<1, RigidBody<dim>::n_rotations> w =
+                      to_tensor<RigidBody<dim>::n_rotations>(fields[5],
+                                                             name + " angular velocity");
+                    for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
+                      p.omega[RigidBody<dim>::rotation_component(j)] = w[j];
+                  }
+                p.velocity_old = p.velocity_old2 = p.velocity;
+                p.omega_old = p.omega_old2 = p.omega;
+              }
+            p.position_old = p.position;
+            p.geometry_center = p.position;
+            particles.push_back(p);
+          }
+    }
+    prm.leave_subsection();
+
+    check_positions(domain, 0.0);
+
+    n_block_unknowns = 0;
+    for (Particle<dim> &p : particles)
+      if (p.motion == ParticleMotion::free)
+        {
+          p.first_unknown = n_block_unknowns;
+          n_block_unknowns += RigidBody<dim>::n_unknowns;
+        }
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::check_positions(const Domain<dim> &domain, const double time) const
+  {
+    const std::string when = (time == 0.0 ? "" : " at t = " + std::to_string(time));
+    // The ball must lie inside the box. In a wall-bounded direction it may not touch the
+    // wall; in a periodic direction it may not cross the boundary (no periodic images).
+    for (const Particle<dim> &p : particles)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const std::string what = "Particle " + std::to_string(p.id + 1) + " (centre " +
+                                   std::string(1, "xyz"[d]) + " = " +
+                                   std::to_string(p.position[d]) +
+                                   ", radius " + std::to_string(p.radius) + ")";
+          AssertThrow(time > 0.0 || (p.position[d] > domain.lower_corner()[d] &&
+                                     p.position[d] < domain.upper_corner()[d]),
+                      ExcMessage(what + " lies outside the box."));
+          AssertThrow(p.position[d] - p.radius > domain.lower_corner()[d] &&
+                        p.position[d] + p.radius < domain.upper_corner()[d],
+                      ExcMessage(what + (domain.is_periodic(d) ?
+                                           " crosses a periodic boundary of the box" :
+                                           " overlaps a wall of the box") +
+                                 when + (time == 0.0 ? "." : " (see subsection Wall repulsion).")));
+        }
+    for (unsigned int i = 0; i < particles.size(); ++i)
+      for (unsigned int j = i + 1; j < particles.size(); ++j)
+        AssertThrow(particles[i].position.distance(particles[j].position) >
+                      particles[i].radius + particles[j].radius,
+                    ExcMessage("Particles " + std::to_string(i + 1) + " and " +
+                               std::to_string(j + 1) + " overlap" + when + "."));
+  }
+
+  template <int dim>
+  int ParticleSet<dim>::locate(const Point<dim> &x) const
+  {
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      if (particles[k].contains(x))
+        return k;
+    return -1;
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::prepare_step(const TimeStepper &time)
+  {
+    for (Particle<dim> &p : particles)
+      p.geometry_center = time.extrapolate(p.position, p.position_old);
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::set_unknowns(const Eigen::VectorXd &y)
+  {
+    AssertDimension(y.size(), n_block_unknowns);
+    for (Particle<dim> &p : particles)
+      if (p.first_unknown != numbers::invalid_unsigned_int)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            p.velocity[d] = y[p.first_unknown + d];
+          for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
+            p.omega[RigidBody<dim>::rotation_component(j)] = y[p.first_unknown + dim + j];
+        }
+  }
+
+  template <int dim>
+  Eigen::VectorXd ParticleSet<dim>::get_unknowns() const
+  {
+    Eigen::VectorXd y(n_block_unknowns);
+    for (const Particle<dim> &p : particles)
+      if (p.first_unknown != numbers::invalid_unsigned_int)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            y[p.first_unknown + d] = p.velocity[d];
+          for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
+            y[p.first_unknown + dim + j] = p.omega[RigidBody<dim>::rotation_component(j)];
+        }
+    return y;
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::finish_step(const TimeStepper &time)
+  {
+    const auto c = time.coefficients();
+    for (Particle<dim> &p : particles)
+      {
+        // BDF formula for dX/dt = V (Euler for BDF1, as the seed's eq. 3.19).
+        // A prescribed particle moves with its constant V; the history then holds V too.
+        const Point<dim> x_new = p.position_after_step(c);
+        p.position_old = p.position;
+        p.position = x_new;
+        p.orientation = RigidBody<dim>::rotate(p.orientation, p.omega, time.next_step());
+        p.velocity_old2 = p.velocity_old;
+        p.velocity_old = p.velocity;
+        p.omega_old2 = p.omega_old;
+        p.omega_old = p.omega;
+      }
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::save(std::ostream &out) const
+  {
+    out << std::setprecision(17);
+    for (const Particle<dim> &p : particles)
+      {
+        for (const auto *t : {&p.position, &p.position_old})
+          for (unsigned int d = 0; d < dim; ++d)
+            out << (*t)[d] << ' ';
+        for (const auto *t : {&p.velocity, &p.velocity_old, &p.velocity_old2, &p.force,
+                              &p.contact_force})
+          for (unsigned int d = 0; d < dim; ++d)
+            out << (*t)[d] << ' ';
+        for (const auto *t : {&p.omega, &p.omega_old, &p.omega_old2, &p.torque})
+          for (unsigned int d = 0; d < 3; ++d)
+            out << (*t)[d] << ' ';
+        const auto &q = p.orientation.coeffs();
+        out << q[0] << ' ' << q[1] << ' ' << q[2] << ' ' << q[3] << '\n';
+      }
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::load(std::istream &in)
+  {
+    for (Particle<dim> &p : particles)
+      {
+        for (auto *t : {&p.position, &p.position_old})
+          for (unsigned int d = 0; d < dim; ++d)
+            in >> (*t)[d];
+        for (auto *t : {&p.velocity, &p.velocity_old, &p.velocity_old2, &p.force,
+                        &p.contact_force})
+          for (unsigned int d = 0; d < dim; ++d)
+            in >> (*t)[d];
+        for (auto *t : {&p.omega, &p.omega_old, &p.omega_old2, &p.torque})
+          for (unsigned int d = 0; d < 3; ++d)
+            in >> (*t)[d];
+        auto &q = p.orientation.coeffs();
+        in >> q[0] >> q[1] >> q[2] >> q[3];
+        p.geometry_center = p.position;
+      }
+  }
+
+  template class ParticleSet<2>;
+  template class ParticleSet<3>;
+} // namespace fdparticle

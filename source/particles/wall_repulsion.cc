@@ -1,0 +1,123 @@
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/wall_repulsion.h>
+
+namespace fdparticle
+{
+  template <int dim>
+  void WallRepulsion<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Wall repulsion");
+    {
+      prm.declare_entry("Enabled", "true", Patterns::Bool(),
+                        "Push particles off the walls with a short-range force (Glowinski et "
+                        "al. 2001) instead of stopping the run when a ball touches a wall.");
+      prm.declare_entry("Range", "auto", Patterns::Anything(),
+                        "Gap below which the force acts (a length), or 'auto': the edge of the "
+                        "finest cells (base mesh refined by the global and particle refinement "
+                        "levels), Glowinski's choice.");
+      prm.declare_entry("Stiffness", "auto", Patterns::Anything(),
+                        "Force at contact (gap 0), or 'auto': 100 times each ball's apparent "
+                        "weight |rho_P - rho_f| |P| |g|, so a ball rests at 0.9 Range off the "
+                        "floor. With no gravity 'auto' gives no force: give a number.");
+    }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void WallRepulsion<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    using namespace ParameterTools;
+    prm.enter_subsection("Wall repulsion");
+    on = prm.get_bool("Enabled");
+    const std::string range = trim(prm.get("Range")), stiffness_text = trim(prm.get("Stiffness"));
+    prm.leave_subsection();
+    range_entry = -1;
+    if (range != "auto")
+      {
+        range_entry = to_double(range, "Wall repulsion/Range");
+        AssertThrow(range_entry > 0,
+                    ExcMessage("Parameter 'Wall repulsion/Range' must be positive or 'auto', got " +
+                               range + "."));
+      }
+    stiffness_entry = -1;
+    if (stiffness_text != "auto")
+      {
+        stiffness_entry = to_double(stiffness_text, "Wall repulsion/Stiffness");
+        AssertThrow(stiffness_entry >= 0,
+                    ExcMessage("Parameter 'Wall repulsion/Stiffness' must not be negative, got " +
+                               stiffness_text + "."));
+      }
+  }
+
+  template <int dim>
+  void WallRepulsion<dim>::initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
+                                      const ParticleSet<dim> &particles,
+                                      const double finest_cell_size)
+  {
+    lower = domain.lower_corner();
+    upper = domain.upper_corner();
+    for (unsigned int d = 0; d < dim; ++d)
+      wall_direction[d] = !domain.is_periodic(d);
+    rho = (range_entry < 0 ? finest_cell_size : range_entry);
+    stiffness.resize(particles.size());
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      stiffness[k] = (stiffness_entry < 0 ?
+                        100 * std::abs(particles[k].density - fluid.density) *
+                          particles[k].volume() * fluid.gravity.norm() :
+                        stiffness_entry);
+  }
+
+  template <int dim>
+  std::vector<typename WallRepulsion<dim>::Contact>
+  WallRepulsion<dim>::contacts(const Particle<dim> &P, const Point<dim> &X) const
+  {
+    std::vector<Contact> result;
+    if (!on)
+      return result;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (wall_direction[d])
+        for (const int side : {-1, 1})
+          {
+            const double gap = (side < 0 ? X[d] - lower[d] : upper[d] - X[d]) - P.radius;
+            if (gap < rho)
+              {
+                Contact c;
+                c.gap = gap;
+                c.normal[d] = -side; // away from the wall, into the box
+                result.push_back(c);
+              }
+          }
+    return result;
+  }
+
+  template <int dim>
+  void WallRepulsion<dim>::add_to_particle_rows(ParticleSet<dim> &particles,
+                                                const std::array<double, 3> &c,
+                                                Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const
+  {
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        Particle<dim> &P = particles[k];
+        P.contact_force = Tensor<1, dim>();
+        if (P.first_unknown == numbers::invalid_unsigned_int)
+          continue;
+        const Point<dim> X = P.position_after_step(c);
+        for (const Contact &w : contacts(P, X))
+          {
+            const double s = 1 - w.gap / rho;
+            P.contact_force += stiffness[k] * s * s * w.normal;
+            // dF/dX = −2K s/ρ n nᵀ (the gap grows along n), and dX/dV = 1/c0.
+            if (D != nullptr)
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  (*D)(P.first_unknown + i, P.first_unknown + j) +=
+                    2 * stiffness[k] * s / rho * w.normal[i] * w.normal[j] / c[0];
+          }
+        for (unsigned int d = 0; d < dim; ++d)
+          r_p[P.first_unknown + d] -= P.contact_force[d];
+      }
+  }
+
+  template class WallRepulsion<2>;
+  template class WallRepulsion<3>;
+} // namespace fdparticle

@@ -1,0 +1,469 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <fdparticle/solvers/bordered_system.h>
+
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Amesos_Mumps.h>
+#include <Epetra_CrsGraph.h>
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+#include <metis.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+
+namespace fdparticle
+{
+  namespace
+  {
+    double seconds_since(const std::chrono::steady_clock::time_point start)
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    /// MUMPS's ICNTL(7) for each ordering it can compute itself. Debian's MUMPS has none
+    /// of METIS or SCOTCH built in, so "metis" is computed here and handed over as a user
+    /// ordering (ICNTL(7) = 1).
+    int mumps_ordering_code(const std::string &name)
+    {
+      if (name == "amd")
+        return 0;
+      if (name == "metis")
+        return 1;
+      if (name == "amf")
+        return 2;
+      if (name == "pord")
+        return 4;
+      if (name == "qamd")
+        return 6;
+      return 7; // auto
+    }
+
+    std::string mumps_ordering_name(const int code)
+    {
+      switch (code)
+        {
+          case 0: return "AMD";
+          case 1: return "user (METIS nested dissection)";
+          case 2: return "AMF";
+          case 3: return "SCOTCH";
+          case 4: return "PORD";
+          case 5: return "METIS";
+          case 6: return "QAMD";
+          default: return std::to_string(code);
+        }
+    }
+
+    /// MUMPS reports large counts as −(count in millions).
+    double mumps_count(const int v) { return v >= 0 ? double(v) : -1e6 * v; }
+
+    /**
+     * Nested-dissection ordering of the symmetrized pattern of A, computed by METIS on
+     * rank 0 after gathering the pattern there (MUMPS analyses on the host anyway).
+     * Returns MUMPS's PERM_IN on rank 0 (1-based position of each unknown in the pivot
+     * order), an empty vector elsewhere.
+     */
+    std::vector<int> metis_nested_dissection(const Epetra_CrsMatrix &E, const MPI_Comm comm)
+    {
+      // Local rows as (global row, global column) pairs, without the diagonal.
+      std::vector<int> local_edges;
+      local_edges.reserve(2 * E.NumMyNonzeros());
+      for (int r = 0; r < E.NumMyRows(); ++r)
+        {
+          int     n;
+          int *   cols;
+          double *vals;
+          E.ExtractMyRowView(r, n, vals, cols);
+          const int row = E.GRID(r);
+          for (int k = 0; k < n; ++k)
+            {
+              const int col = E.GCID(cols[k]);
+              if (col != row)
+                {
+                  local_edges.push_back(row);
+                  local_edges.push_back(col);
+                }
+            }
+        }
+
+      const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+      const unsigned int rank    = dealii::Utilities::MPI::this_mpi_process(comm);
+      const int          my_size = local_edges.size();
+      std::vector<int>   sizes(n_ranks), offsets(n_ranks + 1, 0);
+      MPI_Gather(&my_size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm);
+      for (unsigned int p = 0; p < n_ranks; ++p)
+        offsets[p + 1] = offsets[p] + sizes[p];
+      std::vector<int> edges(rank == 0 ? offsets[n_ranks] : 0);
+      MPI_Gatherv(local_edges.data(), my_size, MPI_INT, edges.data(), sizes.data(),
+                  offsets.data(), MPI_INT, 0, comm);
+      local_edges = std::vector<int>();
+      if (rank != 0)
+        return {};
+
+      // Adjacency of the symmetrized graph in CSR form: count, fill both directions,
+      // then sort and remove duplicates row by row.
+      const idx_t      n = E.NumGlobalRows();
+      std::vector<idx_t> degree(n + 1, 0);
+      for (std::size_t e = 0; e < edges.size(); e += 2)
+        {
+          ++degree[edges[e] + 1];
+          ++degree[edges[e + 1] + 1];
+        }
+      for (idx_t i = 0; i < n; ++i)
+        degree[i + 1] += degree[i];
+      std::vector<idx_t> adjacency(degree[n]);
+      std::vector<idx_t> fill(degree.begin(), degree.end() - 1);
+      for (std::size_t e = 0; e < edges.size(); e += 2)
+        {
+          adjacency[fill[edges[e]]++]     = edges[e + 1];
+          adjacency[fill[edges[e + 1]]++] = edges[e];
+        }
+      edges = std::vector<int>();
+      std::vector<idx_t> xadj(n + 1, 0);
+      idx_t              out = 0;
+      for (idx_t i = 0; i < n; ++i)
+        {
+          auto first = adjacency.begin() + degree[i], last = adjacency.begin() + degree[i + 1];
+          std::sort(first, last);
+          last = std::unique(first, last);
+          for (auto it = first; it != last; ++it)
+            adjacency[out++] = *it;
+          xadj[i + 1] = out;
+        }
+      adjacency.resize(out);
+
+      idx_t options[METIS_NOPTIONS];
+      METIS_SetDefaultOptions(options);
+      options[METIS_OPTION_NUMBERING] = 0;
+      std::vector<idx_t> perm(n), iperm(n);
+      idx_t              nv  = n;
+      const int          ret = METIS_NodeND(&nv, xadj.data(), adjacency.data(), nullptr, options,
+                                   perm.data(), iperm.data());
+      AssertThrow(ret == METIS_OK, ExcMessage("METIS_NodeND failed."));
+      // iperm[i] is the new (0-based) position of unknown i.
+      std::vector<int> perm_in(n);
+      for (idx_t i = 0; i < n; ++i)
+        perm_in[i] = iperm[i] + 1;
+      return perm_in;
+    }
+  } // namespace
+
+  BorderedSystem::BorderedSystem()  = default;
+  BorderedSystem::~BorderedSystem() = default;
+
+  void BorderedSystem::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Solver");
+    {
+      prm.declare_entry("Linear solver", "Amesos_Mumps",
+                        Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
+                        "Direct solver for the finite-element block: MUMPS (parallel) or KLU "
+                        "(serial, gathers the matrix on one rank).");
+      prm.declare_entry("MUMPS ordering", "metis",
+                        Patterns::Selection("metis|auto|amd|amf|qamd|pord"),
+                        "Fill-reducing ordering for MUMPS (ICNTL(7)). 'metis': METIS nested "
+                        "dissection, computed by fdparticle and given to MUMPS as its "
+                        "ordering (Debian's MUMPS has no METIS or SCOTCH of its own); the "
+                        "fewest flops and a cheap analysis. 'auto' lets MUMPS choose among "
+                        "the orderings it has (it picks PORD: 7 % more flops, 3x the analysis "
+                        "time on the 3D sediment scene); AMD, AMF and QAMD need 2-2.5x the "
+                        "flops of METIS there.");
+      prm.declare_entry("Direct solver statistics", "false", Patterns::Bool(),
+                        "Print, for every factorization, its wall time and (MUMPS) the "
+                        "ordering used, the flops and the number of entries in the factors.");
+    }
+    prm.leave_subsection();
+  }
+
+  void BorderedSystem::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Solver");
+    solver_type    = prm.get("Linear solver");
+    mumps_ordering = prm.get("MUMPS ordering");
+    verbose        = prm.get_bool("Direct solver statistics");
+    prm.leave_subsection();
+  }
+
+  void BorderedSystem::release_factorization()
+  {
+    solver.reset();
+    problem.reset();
+    symbolic_done = numeric_done = schur_done = false;
+    Z.reset();
+  }
+
+  void BorderedSystem::reinit(const IndexSet &                         owned,
+                              const IndexSet &                         relevant,
+                              const TrilinosWrappers::SparsityPattern &sparsity,
+                              const MPI_Comm                           comm,
+                              const unsigned int                       m)
+  {
+    // A pattern equal to the one A has keeps A and the symbolic factorization: steps in
+    // which no DoF changes its constraint status pay only the numeric one.
+    if (same_pattern(sparsity))
+      A = 0;
+    else
+      {
+        // The factorization refers to A's Epetra matrix: release it before A changes.
+        release_factorization();
+        A.reinit(sparsity);
+      }
+    numeric_done = schur_done = false;
+    // Writable ghost entries: cells at a partition boundary add into DoFs owned by a
+    // neighbour, and compress(add) ships them there.
+    r_fe.reinit(owned, relevant, comm, /*vector_writable=*/true);
+    // Fresh copies, not assignment: assigning a Trilinos vector to one whose old layout has
+    // the same size and local range imports into that old layout, and after a mesh
+    // adaptation in parallel the owned index sets can differ with equal ranges, so the
+    // border vectors would keep the previous partition.
+    B = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
+    C = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
+    D.setZero(m, m);
+    r_p.setZero(m);
+  }
+
+  bool BorderedSystem::same_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const
+  {
+    if (!symbolic_done)
+      return false;
+    const Epetra_CrsGraph &now = A.trilinos_matrix().Graph();
+    const Epetra_CrsGraph &next = sparsity.trilinos_sparsity_pattern();
+    bool same = now.RowMap().SameAs(next.RowMap()) && now.NumMyRows() == next.NumMyRows() &&
+                now.NumMyNonzeros() == next.NumMyNonzeros();
+    for (int r = 0; same && r < now.NumMyRows(); ++r)
+      {
+        int  n_now, n_next;
+        int *c_now, *c_next;
+        now.ExtractMyRowView(r, n_now, c_now);
+        next.ExtractMyRowView(r, n_next, c_next);
+        same = n_now == n_next;
+        // Compare global column indices, sorted (the local numbering of the columns may
+        // differ between the two graphs).
+        std::vector<long long> a(n_now), b(n_next);
+        for (int k = 0; same && k < n_now; ++k)
+          {
+            a[k] = now.GCID64(c_now[k]);
+            b[k] = next.GCID64(c_next[k]);
+          }
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        same = same && a == b;
+      }
+    const MPI_Comm comm = A.get_mpi_communicator();
+    return dealii::Utilities::MPI::min(same ? 1 : 0, comm) == 1;
+  }
+
+  void BorderedSystem::zero(const bool with_matrix)
+  {
+    r_fe = 0;
+    r_p.setZero();
+    if (!with_matrix)
+      return;
+    // New values, same pattern: the symbolic factorization stays valid.
+    numeric_done = schur_done = false;
+    A                         = 0;
+    for (auto &b : B)
+      b = 0;
+    for (auto &c : C)
+      c = 0;
+    D.setZero();
+  }
+
+  double BorderedSystem::residual_norm() const
+  {
+    return std::sqrt(r_fe.norm_sqr() + r_p.squaredNorm());
+  }
+
+  void BorderedSystem::factorize_symbolic()
+  {
+    const auto start = std::chrono::steady_clock::now();
+    release_factorization();
+    Epetra_CrsMatrix &E = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
+    problem             = std::make_unique<Epetra_LinearProblem>();
+    problem->SetOperator(&E);
+
+    Amesos factory;
+    AssertThrow(factory.Query(solver_type),
+                ExcMessage("This Trilinos has no " + solver_type + "."));
+    solver.reset(factory.Create(solver_type, *problem));
+    AssertThrow(solver, ExcMessage("Amesos could not create " + solver_type + "."));
+
+    Teuchos::ParameterList parameters;
+    if (solver_type == "Amesos_Mumps")
+      {
+        Teuchos::ParameterList &mumps = parameters.sublist("mumps");
+        mumps.set("ICNTL(7)", mumps_ordering_code(mumps_ordering));
+        mumps.set("ICNTL(14)", workspace_percent);
+        if (mumps_ordering == "metis")
+          {
+            permutation = metis_nested_dissection(E, A.get_mpi_communicator());
+            mumps.set("PermIn", permutation.empty() ? static_cast<int *>(nullptr) :
+                                                      permutation.data());
+          }
+      }
+    AssertThrow(solver->SetParameters(parameters) == 0,
+                ExcMessage("Amesos rejected the parameters of " + solver_type + "."));
+    AssertThrow(solver->SymbolicFactorization() == 0,
+                ExcMessage(solver_type + ": the symbolic factorization failed."));
+    symbolic_done = true;
+    ++stats.n_symbolic;
+    const double t = seconds_since(start);
+    stats.symbolic_seconds += t;
+    if (verbose && dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+      std::cout << "  direct solver " << solver_type << ": symbolic factorization "
+                << std::fixed << std::setprecision(3) << t << " s" << std::defaultfloat
+                << std::endl;
+  }
+
+  void BorderedSystem::factorize_numeric()
+  {
+    if (!symbolic_done)
+      factorize_symbolic();
+    const auto start = std::chrono::steady_clock::now();
+    // MUMPS sizes its work arrays from the analysis' estimate plus ICNTL(14) percent; with
+    // many delayed pivots (the saddle point) the estimate can be short (INFOG(1) = -9 at
+    // 2D h = 1/256). Then redo the analysis with four times the margin, up to three times.
+    for (int attempt = 0;; ++attempt)
+      {
+        if (solver->NumericFactorization() == 0)
+          break;
+        auto *    mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
+        const int info  = mumps ? mumps->GetINFOG()[0] : 0;
+        const bool short_of_space =
+          info == -8 || info == -9 || info == -14 || info == -15 || info == -17;
+        AssertThrow(short_of_space && attempt < 3,
+                    ExcMessage(solver_type + ": the numeric factorization failed" +
+                               (mumps ? " (MUMPS INFOG(1) = " + std::to_string(info) + ")" :
+                                        std::string()) +
+                               "."));
+        workspace_percent *= 4;
+        if (dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+          std::cout << "  direct solver: MUMPS ran out of working space (INFOG(1) = " << info
+                    << "); analysing again with ICNTL(14) = " << workspace_percent << std::endl;
+        factorize_symbolic();
+      }
+    numeric_done = true;
+    schur_done   = false; // Z and S belong to the previous values
+    ++stats.n_numeric;
+    const double t = seconds_since(start);
+    stats.numeric_seconds += t;
+    if (verbose)
+      report_factorization(t);
+  }
+
+  void BorderedSystem::report_factorization(const double seconds) const
+  {
+    if (dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) != 0)
+      return;
+    std::cout << "  direct solver " << solver_type << ": numeric factorization " << std::fixed
+              << std::setprecision(3) << seconds << " s" << std::defaultfloat;
+    if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get()))
+      {
+        const int *   infog  = mumps->GetINFOG();
+        const double *rinfog = mumps->GetRINFOG();
+        // INFOG(7): ordering used; RINFOG(3): flops of the elimination; INFOG(29): entries
+        // in the factors; INFOG(13): delayed pivots; INFOG(19): MB allocated in total.
+        std::cout << ", ordering " << mumps_ordering_name(infog[6]) << ", " << std::setprecision(3)
+                  << rinfog[2] << " flops (" << rinfog[2] / seconds / 1e9 << " GFlop/s), "
+                  << mumps_count(infog[28]) << " entries in the factors, " << infog[12]
+                  << " delayed pivots, " << infog[18] << " MB";
+      }
+    std::cout << std::endl;
+  }
+
+  void BorderedSystem::solve_newton_step(TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y)
+  {
+    if (!numeric_done)
+      factorize_numeric();
+    const unsigned int m = B.size();
+    // Z = A⁻¹B and the LU of S = D − C Z belong to the Jacobian: computed with its first
+    // solve, kept for the later ones (modified Newton), which then need one right-hand side.
+    const bool         new_schur = !schur_done && m > 0;
+    const unsigned int n_rhs     = new_schur ? m + 1 : 1;
+    const auto         start     = std::chrono::steady_clock::now();
+
+    // One solve for the right-hand sides (−r_fe[, B_1, …, B_m]): column 0 gives
+    // z0 = −A⁻¹ r_fe, column j + 1 gives Z_j = A⁻¹ B_j.
+    const Epetra_CrsMatrix &E = A.trilinos_matrix();
+    Epetra_MultiVector      rhs(E.RangeMap(), n_rhs), sol(E.DomainMap(), n_rhs);
+    const int               n_local = rhs.MyLength();
+    {
+      const double *r = r_fe.trilinos_vector()[0];
+      for (int i = 0; i < n_local; ++i)
+        rhs[0][i] = -r[i];
+      for (unsigned int j = 1; j < n_rhs; ++j)
+        std::copy_n(B[j - 1].trilinos_vector()[0], n_local, rhs[j]);
+    }
+    problem->SetLHS(&sol);
+    problem->SetRHS(&rhs);
+    AssertThrow(solver->Solve() == 0, ExcMessage(solver_type + ": the solve failed."));
+    problem->SetLHS(nullptr);
+    problem->SetRHS(nullptr);
+    ++stats.n_solves;
+    const double t = seconds_since(start);
+    stats.solve_seconds += t;
+    if (verbose && dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+      std::cout << "  direct solver " << solver_type << ": solve with " << n_rhs
+                << " right-hand side(s) " << std::fixed << std::setprecision(3) << t << " s"
+                << std::defaultfloat << std::endl;
+
+    const MPI_Comm comm = r_fe.get_mpi_communicator();
+    x.reinit(r_fe.locally_owned_elements(), comm);
+    double *xv = x.trilinos_vector()[0];
+    std::copy_n(sol[0], n_local, xv);
+    y.setZero(m);
+    if (m == 0)
+      return;
+
+    // G = C·[z0(, Z_1, …, Z_m)]: local products, then one reduction.
+    std::vector<double> G(m * n_rhs, 0.0);
+    for (unsigned int i = 0; i < m; ++i)
+      {
+        const double *c = C[i].trilinos_vector()[0];
+        for (unsigned int j = 0; j < n_rhs; ++j)
+          {
+            const double *z   = sol[j];
+            double        sum = 0;
+            for (int k = 0; k < n_local; ++k)
+              sum += c[k] * z[k];
+            G[i * n_rhs + j] = sum;
+          }
+      }
+    dealii::Utilities::MPI::sum(G, comm, G);
+
+    if (new_schur)
+      {
+        Eigen::MatrixXd S = D;
+        for (unsigned int i = 0; i < m; ++i)
+          for (unsigned int j = 0; j < m; ++j)
+            S(i, j) -= G[i * n_rhs + j + 1];
+        // Full pivoting: S is tiny, and for neutrally buoyant particles D = 0.
+        schur_lu.compute(S);
+        AssertThrow(schur_lu.isInvertible(),
+                    ExcMessage("The particle block of the Newton system is singular: a "
+                               "particle is not resolved by the mesh (too few cells inside "
+                               "it?)."));
+        Z = std::make_unique<Epetra_MultiVector>(E.DomainMap(), m);
+        for (unsigned int j = 0; j < m; ++j)
+          std::copy_n(sol[j + 1], n_local, (*Z)[j]);
+        schur_done = true;
+      }
+
+    Eigen::VectorXd g = -r_p;
+    for (unsigned int i = 0; i < m; ++i)
+      g[i] -= G[i * n_rhs];
+    y = schur_lu.solve(g);
+    for (unsigned int j = 0; j < m; ++j)
+      {
+        const double *z = (*Z)[j];
+        for (int k = 0; k < n_local; ++k)
+          xv[k] -= y[j] * z[k];
+      }
+  }
+} // namespace fdparticle
