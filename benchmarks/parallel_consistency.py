@@ -315,7 +315,7 @@ def scene_scales(text):
 
 # ------------------------------------------------------------------------------ running
 def end_group(process):
-    """End a run started in a session of its own: mpirun and all its ranks."""
+    """End a run started in a process group of its own: mpirun and all its ranks."""
     try:
         os.killpg(process.pid, signal.SIGTERM)
         try:
@@ -372,7 +372,7 @@ def run_fdparticle(executable, prm, ranks, cwd, timeout, stall):
     log = os.path.join(cwd, f"ranks-{ranks}.log")
     started = time.time()
     with open(log, "w") as out, open(log + ".stderr", "w+") as err:
-        # A session of its own: a hung run is ended with all its ranks, not only mpirun.
+        # A process group of its own: a hung run is ended with all its ranks, not only mpirun.
         process = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=err,
                                    start_new_session=True)
         try:

@@ -87,10 +87,10 @@ namespace fdparticle
       return to_tensor<dim>(prm.get(name), entry_path);
     }
 
-    std::string format_count(const double count)
+    std::string format_short(const double x)
     {
       std::ostringstream s;
-      s << std::setprecision(3) << count;
+      s << std::setprecision(3) << x;
       return s.str();
     }
 

@@ -43,8 +43,8 @@ namespace fdparticle
       AssertThrow(n_steps <= max_steps,
                   ExcMessage("Parameters 'Time/End time' = " + prm.get("End time") +
                              " and 'Time/Time step' = " + prm.get("Time step") + " ask for " +
-                             format_count(n_steps) + " time steps; fdparticle refuses more than " +
-                             format_count(max_steps) +
+                             format_short(n_steps) + " time steps; fdparticle refuses more than " +
+                             format_short(max_steps) +
                              ". Use a larger Time step or a shorter End time."));
       const std::string scheme = trim(prm.get("Scheme"));
       AssertThrow(scheme == "BDF1" || scheme == "BDF2",

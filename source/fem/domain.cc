@@ -60,11 +60,11 @@ namespace fdparticle
       for (unsigned int d = 0; d < dim; ++d)
         AssertThrow(std::abs(lower[d]) <= max_length && std::abs(upper[d]) <= max_length &&
                       upper[d] - lower[d] >= 1 / max_length,
-                    ExcMessage("Geometry: the box must lie within +-" + format_count(max_length) +
-                               " and be at least " + format_count(1 / max_length) +
+                    ExcMessage("Geometry: the box must lie within +-" + format_short(max_length) +
+                               " and be at least " + format_short(1 / max_length) +
                                " wide in every direction (direction " +
-                               std::string(1, "xyz"[d]) + ": from " + format_count(lower[d]) +
-                               " to " + format_count(upper[d]) +
+                               std::string(1, "xyz"[d]) + ": from " + format_short(lower[d]) +
+                               " to " + format_short(upper[d]) +
                                "); choose units in which the scene's lengths are moderate "
                                "numbers."));
       const Tensor<1, dim> n = get_tensor<dim>(prm, "Subdivisions", "Geometry/Subdivisions");
@@ -82,9 +82,9 @@ namespace fdparticle
       AssertThrow(cells <= max_cells,
                   ExcMessage("Parameters 'Geometry/Subdivisions' = " + prm.get("Subdivisions") +
                              " and 'Geometry/Global refinements' = " +
-                             prm.get("Global refinements") + " ask for " + format_count(cells) +
+                             prm.get("Global refinements") + " ask for " + format_short(cells) +
                              " cells; fdparticle refuses meshes of more than " +
-                             format_count(max_cells) +
+                             format_short(max_cells) +
                              " cells (0.1-1 TB of memory). Use fewer subdivisions or "
                              "refinements."));
       for (unsigned int d = 0; d < dim; ++d)

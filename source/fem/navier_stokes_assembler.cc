@@ -125,7 +125,7 @@ namespace fdparticle
     const DoFHandler<dim> &dof_handler, const TrilinosWrappers::MPI::Vector &solution,
     const TrilinosWrappers::MPI::Vector &history, const std::array<double, 3> &c,
     const AffineConstraints<double> &constraints, const bool with_matrix,
-    BorderedSystem &system) const
+    NewtonSystem &system) const
   {
     using RB = RigidBody<dim>;
     const FEValuesExtractors::Vector vel(0), lam(dim);

@@ -258,7 +258,7 @@ end
       check_close(m[1].omega, Tensor<1, 3>(), "omega defaults to 0");
     }
     parse<3>(base_3d + override_entry("Particles/Particles", ""), empty);
-    check(empty.particles.empty() && empty.particles.n_unknowns() == 0, "empty particle list");
+    check(empty.particles.size() == 0 && empty.particles.n_unknowns() == 0, "empty particle list");
     // Touching the wall of a periodic direction is fine as long as it does not cross.
     Parsed<3> near;
     parse<3>(base_3d + override_entry("Particles/Particles", "0.11, 1, 2.89 : 0.1 : 1"), near);

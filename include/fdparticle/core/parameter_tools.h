@@ -53,8 +53,8 @@ namespace fdparticle
     Tensor<1, dim> get_tensor(const ParameterHandler &prm, const std::string &name,
                               const std::string &entry_path);
 
-    /// A large count for a message, to 3 significant digits ("2e+11").
-    std::string format_count(const double count);
+    /// A number for a message, to 3 significant digits ("2e+11", "0.05").
+    std::string format_short(const double x);
 
     /// The first line of the message of a deal.II or standard exception, made into one line.
     std::string one_line_message(const std::exception &exc);

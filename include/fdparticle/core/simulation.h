@@ -11,7 +11,6 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <fdparticle/solvers/bordered_system.h>
 #include <fdparticle/io/checkpointer.h>
 #include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/fem/domain.h>
@@ -23,6 +22,9 @@
 #include <fdparticle/io/smoothness_meter.h>
 #include <fdparticle/core/time_stepper.h>
 #include <fdparticle/particles/wall_repulsion.h>
+#include <fdparticle/solvers/linear_solver.h>
+#include <fdparticle/solvers/newton_solver.h>
+#include <fdparticle/solvers/newton_system.h>
 
 #include <deque>
 #include <memory>
@@ -37,7 +39,14 @@ namespace fdparticle
   /**
    * One run of a scene: the mesh and the (u, λ, p) finite element, the constraints that
    * change with the particles, the time loop and, inside each step, Newton's method on
-   * the bordered system (doc/method.md §3, §5, §8). Stokes scenes take a single linear solve a step.
+   * the bordered system (doc/method.md §3, §5, §8). Stokes scenes take a single linear
+   * solve a step.
+   *
+   * The members are defined by job, as ASPECT splits its Simulator, in
+   * source/core/simulation/: core.cc (parameters, the run and its time loop), setup.cc
+   * (mesh, DoFs, constraints, matrix layout, adaptation), time_step.cc (one step: Newton,
+   * recovery of failed steps, particle forces), checkpoint_restart.cc, diagnostics.cc
+   * (statistics and output of a step).
    */
   template <int dim>
   class Simulation
@@ -46,9 +55,6 @@ namespace fdparticle
     /// Reads and checks every parameter; throws a one-sentence error on bad input.
     Simulation(ParameterHandler &prm, const MPI_Comm comm);
     void run();
-
-    /// The result of the last step, for tests that drive a simulation directly.
-    const ParticleSet<dim> &get_particles() const { return particles; }
 
   private:
     /// Mesh, DoFs and initial state at t = 0, and the first output.
@@ -68,7 +74,9 @@ namespace fdparticle
     void   make_constraints();
     void   setup_matrix();
     void   set_initial_pressure();
-    void   solve_time_step(StepStatistics &stats);
+    /// Newton's method for the step prepared by do_time_step(); on success the particle
+    /// forces are updated and stats gets the iterations and residuals.
+    NewtonSolver::Result solve_time_step(StepStatistics &stats);
     void   update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals);
     double max_velocity() const;
     /// hydrostatic_deviation and mean_velocity of stats, in one pass over the cells.
@@ -101,13 +109,12 @@ namespace fdparticle
     Checkpointer<dim>      checkpointer;
     WallRepulsion<dim>     repulsion;
     unsigned int           base_level = 0;
-    BorderedSystem         system;
+    NewtonSystem                  system;
+    /// Declared after the system it refers to, so that it is destroyed first.
+    std::unique_ptr<LinearSolver> linear_solver;
+    NewtonSolver                  newton;
 
-    double       nonlinear_tolerance = 1e-10;
-    unsigned int max_nonlinear_iterations = 20;
-    bool         line_search = true;
-    bool         reuse_jacobian = true;
-    bool         hydrostatic_start = false;
+    bool hydrostatic_start = false;
 
     parallel::distributed::Triangulation<dim> triangulation;
     FESystem<dim>                             fe;

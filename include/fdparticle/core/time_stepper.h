@@ -43,8 +43,7 @@ namespace fdparticle
     /// The size of the next step: the current one, shortened to land on the end time
     /// (the last two steps share the remainder when it is less than two steps).
     double       next_step() const;
-    /// The step size in force (below the requested one after a recovery).
-    double       current_step() const { return dt_current; }
+    /// Whether the end time is reached.
     bool         finished() const;
 
     /// c0, c1, c2 with dy/dt ≈ c0 y^{n+1} + c1 y^n + c2 y^{n−1}, for the next step.

@@ -61,7 +61,6 @@ namespace fdparticle
     const Quadrature<dim> &regular_rule() const { return regular; }
     const Quadrature<dim> &cut_rule() const { return cut; }
     unsigned int           cut_points_per_direction() const { return n_cut_points; }
-    Method                 method() const { return cut_method; }
 
     /// Which particles meet the cell: fluid, inside or cut (by the cell's vertices and box).
     CellKind classify(const typename Triangulation<dim>::cell_iterator &cell,

@@ -9,7 +9,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <fdparticle/solvers/bordered_system.h>
+#include <fdparticle/solvers/newton_system.h>
 #include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/core/fluid.h>
 #include <fdparticle/particles/particle_set.h>
@@ -65,7 +65,7 @@ namespace fdparticle
     assemble(const DoFHandler<dim> &dof_handler, const TrilinosWrappers::MPI::Vector &solution,
              const TrilinosWrappers::MPI::Vector &history, const std::array<double, 3> &c,
              const AffineConstraints<double> &constraints, const bool with_matrix,
-             BorderedSystem &system) const;
+             NewtonSystem &system) const;
 
     /// Where the particles are, as the constraints of a step need it.
     struct ParticleSupport

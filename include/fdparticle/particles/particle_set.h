@@ -116,7 +116,6 @@ namespace fdparticle
     void        parse_parameters(ParameterHandler &prm, const Domain<dim> &domain);
 
     unsigned int              size() const { return particles.size(); }
-    bool                      empty() const { return particles.empty(); }
     Particle<dim> &           operator[](const unsigned int k) { return particles[k]; }
     const Particle<dim> &     operator[](const unsigned int k) const { return particles[k]; }
     AngularVelocityClosure    closure() const { return angular_closure; }

@@ -1,12 +1,11 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
-#include <fdparticle/solvers/bordered_system.h>
+#include <fdparticle/solvers/direct_solver.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
 #include <Amesos_Mumps.h>
-#include <Epetra_CrsGraph.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
@@ -154,10 +153,10 @@ namespace fdparticle
     }
   } // namespace
 
-  BorderedSystem::BorderedSystem()  = default;
-  BorderedSystem::~BorderedSystem() = default;
+  DirectSolver::DirectSolver()  = default;
+  DirectSolver::~DirectSolver() = default;
 
-  void BorderedSystem::declare_parameters(ParameterHandler &prm)
+  void DirectSolver::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Solver");
     {
@@ -181,7 +180,7 @@ namespace fdparticle
     prm.leave_subsection();
   }
 
-  void BorderedSystem::parse_parameters(ParameterHandler &prm)
+  void DirectSolver::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Solver");
     solver_type    = prm.get("Linear solver");
@@ -190,101 +189,28 @@ namespace fdparticle
     prm.leave_subsection();
   }
 
-  void BorderedSystem::release_factorization()
+  void DirectSolver::pattern_changed()
   {
+    // The factorization refers to A's Epetra matrix: released before A changes.
     solver.reset();
     problem.reset();
-    symbolic_done = numeric_done = schur_done = false;
     Z.reset();
+    symbolic_done = numeric_done = schur_done = false;
   }
 
-  void BorderedSystem::reinit(const IndexSet &                         owned,
-                              const IndexSet &                         relevant,
-                              const TrilinosWrappers::SparsityPattern &sparsity,
-                              const MPI_Comm                           comm,
-                              const unsigned int                       m)
+  void DirectSolver::operator_changed()
   {
-    // A pattern equal to the one A has keeps A and the symbolic factorization: steps in
-    // which no DoF changes its constraint status pay only the numeric one.
-    if (same_pattern(sparsity))
-      A = 0;
-    else
-      {
-        // The factorization refers to A's Epetra matrix: release it before A changes.
-        release_factorization();
-        A.reinit(sparsity);
-      }
-    numeric_done = schur_done = false;
-    // Writable ghost entries: cells at a partition boundary add into DoFs owned by a
-    // neighbour, and compress(add) ships them there.
-    r_fe.reinit(owned, relevant, comm, /*vector_writable=*/true);
-    // Fresh copies, not assignment: assigning a Trilinos vector to one whose old layout has
-    // the same size and local range imports into that old layout, and after a mesh
-    // adaptation in parallel the owned index sets can differ with equal ranges, so the
-    // border vectors would keep the previous partition.
-    B = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
-    C = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
-    D.setZero(m, m);
-    r_p.setZero(m);
-  }
-
-  bool BorderedSystem::same_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const
-  {
-    if (!symbolic_done)
-      return false;
-    const Epetra_CrsGraph &now = A.trilinos_matrix().Graph();
-    const Epetra_CrsGraph &next = sparsity.trilinos_sparsity_pattern();
-    bool same = now.RowMap().SameAs(next.RowMap()) && now.NumMyRows() == next.NumMyRows() &&
-                now.NumMyNonzeros() == next.NumMyNonzeros();
-    for (int r = 0; same && r < now.NumMyRows(); ++r)
-      {
-        int  n_now, n_next;
-        int *c_now, *c_next;
-        now.ExtractMyRowView(r, n_now, c_now);
-        next.ExtractMyRowView(r, n_next, c_next);
-        same = n_now == n_next;
-        // Compare global column indices, sorted (the local numbering of the columns may
-        // differ between the two graphs).
-        std::vector<long long> a(n_now), b(n_next);
-        for (int k = 0; same && k < n_now; ++k)
-          {
-            a[k] = now.GCID64(c_now[k]);
-            b[k] = next.GCID64(c_next[k]);
-          }
-        std::sort(a.begin(), a.end());
-        std::sort(b.begin(), b.end());
-        same = same && a == b;
-      }
-    const MPI_Comm comm = A.get_mpi_communicator();
-    return dealii::Utilities::MPI::min(same ? 1 : 0, comm) == 1;
-  }
-
-  void BorderedSystem::zero(const bool with_matrix)
-  {
-    r_fe = 0;
-    r_p.setZero();
-    if (!with_matrix)
-      return;
     // New values, same pattern: the symbolic factorization stays valid.
     numeric_done = schur_done = false;
-    A                         = 0;
-    for (auto &b : B)
-      b = 0;
-    for (auto &c : C)
-      c = 0;
-    D.setZero();
   }
 
-  double BorderedSystem::residual_norm() const
-  {
-    return std::sqrt(r_fe.norm_sqr() + r_p.squaredNorm());
-  }
-
-  void BorderedSystem::factorize_symbolic()
+  void DirectSolver::factorize_symbolic(const NewtonSystem &system)
   {
     const auto start = std::chrono::steady_clock::now();
-    release_factorization();
-    Epetra_CrsMatrix &E = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
+    pattern_changed();
+    // Amesos takes a non-const operator but only reads it.
+    Epetra_CrsMatrix &E = const_cast<Epetra_CrsMatrix &>(system.A.trilinos_matrix());
+    const MPI_Comm    comm = system.A.get_mpi_communicator();
     problem             = std::make_unique<Epetra_LinearProblem>();
     problem->SetOperator(&E);
 
@@ -302,7 +228,7 @@ namespace fdparticle
         mumps.set("ICNTL(14)", workspace_percent);
         if (mumps_ordering == "metis")
           {
-            permutation = metis_nested_dissection(E, A.get_mpi_communicator());
+            permutation = metis_nested_dissection(E, comm);
             mumps.set("PermIn", permutation.empty() ? static_cast<int *>(nullptr) :
                                                       permutation.data());
           }
@@ -315,20 +241,21 @@ namespace fdparticle
     ++stats.n_symbolic;
     const double t = seconds_since(start);
     stats.symbolic_seconds += t;
-    if (verbose && dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+    if (verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       std::cout << "  direct solver " << solver_type << ": symbolic factorization "
                 << std::fixed << std::setprecision(3) << t << " s" << std::defaultfloat
                 << std::endl;
   }
 
-  void BorderedSystem::factorize_numeric()
+  void DirectSolver::factorize_numeric(const NewtonSystem &system)
   {
     if (!symbolic_done)
-      factorize_symbolic();
-    const auto start = std::chrono::steady_clock::now();
+      factorize_symbolic(system);
+    const MPI_Comm comm  = system.A.get_mpi_communicator();
+    const auto     start = std::chrono::steady_clock::now();
     // MUMPS sizes its work arrays from the analysis' estimate plus ICNTL(14) percent; with
     // many delayed pivots (the saddle point) the estimate can be short (INFOG(1) = -9 at
-    // 2D h = 1/256). Then redo the analysis with four times the margin, up to three times.
+    // 2D h = 1/256). Then redo the analysis with more margin.
     for (int attempt = 0;; ++attempt)
       {
         if (solver->NumericFactorization() == 0)
@@ -337,16 +264,16 @@ namespace fdparticle
         const int info  = mumps ? mumps->GetINFOG()[0] : 0;
         const bool short_of_space =
           info == -8 || info == -9 || info == -14 || info == -15 || info == -17;
-        AssertThrow(short_of_space && attempt < 3,
+        AssertThrow(short_of_space && attempt < max_workspace_retries,
                     ExcMessage(solver_type + ": the numeric factorization failed" +
                                (mumps ? " (MUMPS INFOG(1) = " + std::to_string(info) + ")" :
                                         std::string()) +
                                "."));
-        workspace_percent *= 4;
-        if (dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+        workspace_percent *= workspace_growth;
+        if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
           std::cout << "  direct solver: MUMPS ran out of working space (INFOG(1) = " << info
                     << "); analysing again with ICNTL(14) = " << workspace_percent << std::endl;
-        factorize_symbolic();
+        factorize_symbolic(system);
       }
     numeric_done = true;
     schur_done   = false; // Z and S belong to the previous values
@@ -354,12 +281,12 @@ namespace fdparticle
     const double t = seconds_since(start);
     stats.numeric_seconds += t;
     if (verbose)
-      report_factorization(t);
+      report_factorization(t, comm);
   }
 
-  void BorderedSystem::report_factorization(const double seconds) const
+  void DirectSolver::report_factorization(const double seconds, const MPI_Comm comm) const
   {
-    if (dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) != 0)
+    if (dealii::Utilities::MPI::this_mpi_process(comm) != 0)
       return;
     std::cout << "  direct solver " << solver_type << ": numeric factorization " << std::fixed
               << std::setprecision(3) << seconds << " s" << std::defaultfloat;
@@ -377,10 +304,13 @@ namespace fdparticle
     std::cout << std::endl;
   }
 
-  void BorderedSystem::solve_newton_step(TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y)
+  LinearSolver::SolveInfo DirectSolver::solve(const NewtonSystem &system, const double,
+                                               TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y)
   {
     if (!numeric_done)
-      factorize_numeric();
+      factorize_numeric(system);
+    const auto &B = system.B;
+    const auto &C = system.C;
     const unsigned int m = B.size();
     // Z = A⁻¹B and the LU of S = D − C Z belong to the Jacobian: computed with its first
     // solve, kept for the later ones (modified Newton), which then need one right-hand side.
@@ -390,11 +320,11 @@ namespace fdparticle
 
     // One solve for the right-hand sides (−r_fe[, B_1, …, B_m]): column 0 gives
     // z0 = −A⁻¹ r_fe, column j + 1 gives Z_j = A⁻¹ B_j.
-    const Epetra_CrsMatrix &E = A.trilinos_matrix();
+    const Epetra_CrsMatrix &E = system.A.trilinos_matrix();
     Epetra_MultiVector      rhs(E.RangeMap(), n_rhs), sol(E.DomainMap(), n_rhs);
     const int               n_local = rhs.MyLength();
     {
-      const double *r = r_fe.trilinos_vector()[0];
+      const double *r = system.r_fe.trilinos_vector()[0];
       for (int i = 0; i < n_local; ++i)
         rhs[0][i] = -r[i];
       for (unsigned int j = 1; j < n_rhs; ++j)
@@ -408,18 +338,19 @@ namespace fdparticle
     ++stats.n_solves;
     const double t = seconds_since(start);
     stats.solve_seconds += t;
-    if (verbose && dealii::Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+    const MPI_Comm comm = system.r_fe.get_mpi_communicator();
+    if (verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       std::cout << "  direct solver " << solver_type << ": solve with " << n_rhs
                 << " right-hand side(s) " << std::fixed << std::setprecision(3) << t << " s"
                 << std::defaultfloat << std::endl;
 
-    const MPI_Comm comm = r_fe.get_mpi_communicator();
-    x.reinit(r_fe.locally_owned_elements(), comm);
+    x.reinit(system.r_fe.locally_owned_elements(), comm);
     double *xv = x.trilinos_vector()[0];
     std::copy_n(sol[0], n_local, xv);
     y.setZero(m);
+    const SolveInfo exact{1, 0.0};
     if (m == 0)
-      return;
+      return exact;
 
     // G = C·[z0(, Z_1, …, Z_m)]: local products, then one reduction.
     std::vector<double> G(m * n_rhs, 0.0);
@@ -439,7 +370,7 @@ namespace fdparticle
 
     if (new_schur)
       {
-        Eigen::MatrixXd S = D;
+        Eigen::MatrixXd S = system.D;
         for (unsigned int i = 0; i < m; ++i)
           for (unsigned int j = 0; j < m; ++j)
             S(i, j) -= G[i * n_rhs + j + 1];
@@ -455,7 +386,7 @@ namespace fdparticle
         schur_done = true;
       }
 
-    Eigen::VectorXd g = -r_p;
+    Eigen::VectorXd g = -system.r_p;
     for (unsigned int i = 0; i < m; ++i)
       g[i] -= G[i * n_rhs];
     y = schur_lu.solve(g);
@@ -465,5 +396,6 @@ namespace fdparticle
         for (int k = 0; k < n_local; ++k)
           xv[k] -= y[j] * z[k];
       }
+    return exact;
   }
 } // namespace fdparticle

@@ -1,4 +1,5 @@
-// Unit test of fdparticle::BorderedSystem (include/fdparticle/solvers/bordered_system.h): the
+// Unit test of fdparticle::DirectSolver (include/fdparticle/solvers/direct_solver.h) on a
+// NewtonSystem (include/fdparticle/solvers/newton_system.h): the
 // Newton correction from the Schur complement of the particle block must equal the solution
 // of the whole bordered system solved densely (Eigen, full-pivot LU), for every direct
 // solver and MUMPS ordering the parameter file can select.
@@ -6,16 +7,17 @@
 // The finite-element block is a small saddle-point matrix like the real one: an
 // unsymmetric "velocity" block (convection-diffusion stencil) and "pressure" rows that
 // couple to velocity only, with no diagonal entry (so the solver has to pivot off the
-// diagonal). The bookkeeping of the factorization is checked too: a reinit() with the same
-// pattern keeps the symbolic factorization, new values need a new numeric one, and a new
-// pattern needs a new symbolic one.
+// diagonal). The bookkeeping of the factorization is checked too: a system laid out again
+// with the same pattern keeps the symbolic factorization, new values need a new numeric
+// one, and a new pattern needs a new symbolic one.
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
-#include <fdparticle/solvers/bordered_system.h>
+#include <fdparticle/solvers/direct_solver.h>
+#include <fdparticle/solvers/newton_system.h>
 
 #include "unit_check.h"
 
@@ -54,10 +56,24 @@ namespace
     return sp;
   }
 
+  /// Lay the system out as the program does each step: the solver hears of a new pattern
+  /// before A changes.
+  void lay_out(NewtonSystem &s, DirectSolver &solver, const bool extra_entry)
+  {
+    const IndexSet                          all     = complete_index_set(n);
+    const TrilinosWrappers::SparsityPattern pattern = make_pattern(extra_entry);
+    const bool                              new_pattern = !s.has_pattern(pattern);
+    if (new_pattern)
+      solver.pattern_changed();
+    s.reinit(all, all, pattern, new_pattern, MPI_COMM_WORLD, m);
+  }
+
   /// Fill A, B, C, D and the residuals; 'shift' changes the values, not the pattern.
-  Eigen::MatrixXd fill(BorderedSystem &s, const double shift, const bool extra_entry)
+  Eigen::MatrixXd fill(NewtonSystem &s, DirectSolver &solver, const double shift,
+                       const bool extra_entry)
   {
     s.zero(true);
+    solver.operator_changed();
     Eigen::MatrixXd full = Eigen::MatrixXd::Zero(n + m, n + m);
     auto set = [&](const unsigned int i, const unsigned int j, const double v) {
       s.A.set(i, j, v);
@@ -107,8 +123,8 @@ namespace
     return full;
   }
 
-  /// Max-norm difference between solve_newton_step() and the dense solution.
-  double error(BorderedSystem &s, const Eigen::MatrixXd &full)
+  /// Max-norm difference between DirectSolver::solve() and the dense solution.
+  double error(NewtonSystem &s, DirectSolver &solver, const Eigen::MatrixXd &full)
   {
     Eigen::VectorXd rhs(n + m);
     for (unsigned int i = 0; i < n; ++i)
@@ -118,7 +134,8 @@ namespace
 
     TrilinosWrappers::MPI::Vector x;
     Eigen::VectorXd               y;
-    s.solve_newton_step(x, y);
+    const auto info = solver.solve(s, 1e-12, x, y);
+    check(info.iterations == 1 && info.residual == 0, "a direct solve reports one exact step");
     double e = 0;
     for (unsigned int i = 0; i < n; ++i)
       e = std::max(e, std::abs(x[i] - exact[i]));
@@ -127,38 +144,42 @@ namespace
     return e / exact.lpNorm<Eigen::Infinity>();
   }
 
-  void check_solver(const std::string &solver, const std::string &ordering)
+  void check_solver(const std::string &solver_name, const std::string &ordering)
   {
-    const std::string what = solver + (solver == "Amesos_Mumps" ? " (" + ordering + ")" : "");
-    ParameterHandler  prm;
-    BorderedSystem::declare_parameters(prm);
+    const std::string what =
+      solver_name + (solver_name == "Amesos_Mumps" ? " (" + ordering + ")" : "");
+    ParameterHandler prm;
+    LinearSolver::declare_parameters(prm);
     prm.parse_input_from_string("subsection Solver\n"
-                                "  set Linear solver = " + solver + "\n"
+                                "  set Linear solver = " + solver_name + "\n"
                                 "  set MUMPS ordering = " + ordering + "\n"
                                 "end\n");
-    BorderedSystem s;
-    s.parse_parameters(prm);
-    const IndexSet all = complete_index_set(n);
+    NewtonSystem s; // declared first: the solver refers to its matrix until destroyed
+    const std::unique_ptr<LinearSolver> created = LinearSolver::create(prm);
+    auto *solver = dynamic_cast<DirectSolver *>(created.get());
+    check(solver != nullptr, what + ": 'Linear solver' selects the direct solver");
+    if (!solver)
+      return;
 
-    s.reinit(all, all, make_pattern(false), MPI_COMM_WORLD, m);
-    Eigen::MatrixXd full = fill(s, 0.0, false);
-    check(error(s, full) < 1e-12, what + ": Newton step equals the dense solution");
+    lay_out(s, *solver, false);
+    Eigen::MatrixXd full = fill(s, *solver, 0.0, false);
+    check(error(s, *solver, full) < 1e-12, what + ": Newton step equals the dense solution");
     // Same pattern again (as after a time step in which no constraint changed).
-    s.reinit(all, all, make_pattern(false), MPI_COMM_WORLD, m);
-    full = fill(s, 0.7, false);
-    check(error(s, full) < 1e-12, what + ": new values, same pattern");
-    const auto &st = s.direct_solver_statistics();
+    lay_out(s, *solver, false);
+    full = fill(s, *solver, 0.7, false);
+    check(error(s, *solver, full) < 1e-12, what + ": new values, same pattern");
+    const auto &st = solver->statistics();
     check(st.n_symbolic == 1 && st.n_numeric == 2,
           what + ": the same pattern keeps the symbolic factorization",
           std::to_string(st.n_symbolic) + " symbolic, " + std::to_string(st.n_numeric) +
             " numeric");
-    // A second solve with the same values reuses the numeric factorization.
-    check(error(s, full) < 1e-12 && st.n_numeric == 2,
+    // A second solve with the same operator reuses the numeric factorization.
+    check(error(s, *solver, full) < 1e-12 && st.n_numeric == 2,
           what + ": a second solve reuses the numeric factorization");
     // A new pattern: a new symbolic factorization.
-    s.reinit(all, all, make_pattern(true), MPI_COMM_WORLD, m);
-    full = fill(s, 0.2, true);
-    check(error(s, full) < 1e-12 && st.n_symbolic == 2,
+    lay_out(s, *solver, true);
+    full = fill(s, *solver, 0.2, true);
+    check(error(s, *solver, full) < 1e-12 && st.n_symbolic == 2,
           what + ": a new pattern gets a new symbolic factorization");
   }
 } // namespace

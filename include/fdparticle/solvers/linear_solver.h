@@ -1,0 +1,62 @@
+#ifndef fdparticle_solvers_linear_solver_h
+#define fdparticle_solvers_linear_solver_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <fdparticle/solvers/newton_system.h>
+
+#include <Eigen/Dense>
+
+#include <memory>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * The solve of a Newton system for the correction (x, y), whatever the method. The
+   * caller says what changed since the last solve, so an implementation keeps what it can:
+   *
+   *  - pattern_changed(): A's sparsity pattern is about to change (a direct solver drops
+   *    its ordering and symbolic factorization, an iterative one its setup);
+   *  - operator_changed(): the values of A, B, C, D changed (a direct solver drops its
+   *    numeric factorization, an iterative one rebuilds its preconditioner).
+   *
+   * Nothing else drops them: a Newton solver that reuses its Jacobian simply does not call
+   * operator_changed(), and solve() works with the operator it has.
+   *
+   * An implementation may keep references to the system's matrix from one solve to the
+   * next (a factorization does): the NewtonSystem must outlive the solver.
+   */
+  class LinearSolver
+  {
+  public:
+    /// What a solve did: iterations of an iterative method (1 for a direct one) and the
+    /// relative residual it reached (0 for a direct one: exact up to round-off, not measured).
+    struct SolveInfo
+    {
+      unsigned int iterations = 0;
+      double       residual   = 0;
+    };
+
+    virtual ~LinearSolver() = default;
+
+    /// Declare the parameters of every implementation, and the choice between them.
+    static void declare_parameters(ParameterHandler &prm);
+    /// The implementation the parameters select, set up from them.
+    static std::unique_ptr<LinearSolver> create(ParameterHandler &prm);
+
+    /// A's sparsity pattern is about to change: release everything built on it. Must come
+    /// before NewtonSystem::reinit() with a new pattern.
+    virtual void pattern_changed() = 0;
+    /// A, B, C or D have new values.
+    virtual void operator_changed() = 0;
+    /// Solve [A B; C D][x; y] = −[r_fe; r_p] to the relative tolerance; throws a
+    /// std::exception with a sentence when it cannot.
+    virtual SolveInfo solve(const NewtonSystem &system, const double tolerance,
+                            TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y) = 0;
+  };
+} // namespace fdparticle
+
+#endif

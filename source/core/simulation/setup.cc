@@ -1,0 +1,296 @@
+// Simulation: the mesh and its adaptation around the particles, the DoFs, the constraints
+// that change with the particles and the layout of the Newton system.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <fdparticle/core/simulation.h>
+
+#include <iomanip>
+#include <limits>
+
+namespace fdparticle
+{
+  template <int dim>
+  void Simulation<dim>::start()
+  {
+    domain.create_mesh(triangulation);
+    base_level = triangulation.n_global_levels() - 1;
+    if (refinement.enabled())
+      adapt_mesh(false);
+    setup_dofs();
+    make_constraints();
+    setup_matrix();
+    set_initial_pressure();
+    state_constraints.distribute(solution);
+    solution_ghost = solution;
+    old_solution = solution;
+    old_old_solution = solution;
+    output.initialize(prm, comm);
+    // t = 0: the state before the first step (forces are those of the fluid at rest).
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        particles[k].force = Tensor<1, dim>();
+        particles[k].torque = Tensor<1, 3>();
+      }
+    write_output(output.vtu_due(0));
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_dofs()
+  {
+    TimerOutput::Scope t(*timer, "setup");
+    dof_handler.distribute_dofs(fe);
+    owned_dofs = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    velocity_dofs = DoFTools::extract_dofs(dof_handler, fe.component_mask(FEValuesExtractors::Vector(0)));
+    // λ DoFs of owned and ghost cells: the constraints need them on every rank that sees them.
+    multiplier_dofs.clear();
+    multiplier_dofs.set_size(dof_handler.n_dofs());
+    {
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              {
+                const unsigned int c = fe.system_to_component_index(i).first;
+                if (c >= dim && c < 2 * dim)
+                  multiplier_dofs.add_index(dofs[i]);
+              }
+          }
+      multiplier_dofs.compress();
+    }
+
+    static_constraints.clear();
+    static_constraints.reinit(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, static_constraints);
+    domain.make_periodicity_constraints(dof_handler, static_constraints);
+    static_constraints.close();
+
+
+    solution.reinit(owned_dofs, comm);
+    old_solution.reinit(owned_dofs, comm);
+    old_old_solution.reinit(owned_dofs, comm);
+    solution_ghost.reinit(owned_dofs, relevant_dofs, comm);
+    history_ghost.reinit(owned_dofs, relevant_dofs, comm);
+
+    // The pressure level is fixed by the mean pressure of the cell at the lower corner
+    // (the seed's "centre node of the first element"): no wall fixes it.
+    const unsigned int p_local = fe.component_to_system_index(2 * dim, 0);
+    double             best = std::numeric_limits<double>::max();
+    types::global_dof_index best_dof = 0;
+    Point<dim>              best_center;
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const double d = cell->center().distance(domain.lower_corner());
+          if (d < best)
+            {
+              best = d;
+              cell->get_dof_indices(dofs);
+              best_dof = dofs[p_local];
+              best_center = cell->center();
+            }
+        }
+    const double       global_best = Utilities::MPI::min(best, comm);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int root = Utilities::MPI::min(
+      best == global_best ? Utilities::MPI::this_mpi_process(comm) : n_ranks, comm);
+    pressure_reference_dof = Utilities::MPI::broadcast(comm, best_dof, root);
+    pressure_reference_point = Utilities::MPI::broadcast(comm, best_center, root);
+    assembler.set_pressure_reference(pressure_reference_point);
+  }
+
+  template <int dim>
+  void Simulation<dim>::adapt_mesh(const bool transfer)
+  {
+    // One pass refines or coarsens each cell by one level; a particle moves less than a
+    // cell per step, so after the initial passes one pass a step keeps up.
+    for (unsigned int pass = 0; pass <= refinement.levels(); ++pass)
+      {
+        if (!refinement.mark(triangulation, particles, base_level))
+          return;
+        TimerOutput::Scope t(*timer, "refinement");
+        triangulation.prepare_coarsening_and_refinement();
+        if (!transfer)
+          {
+            triangulation.execute_coarsening_and_refinement();
+            continue;
+          }
+        std::vector<TrilinosWrappers::MPI::Vector> ghosted(3, solution_ghost);
+        ghosted[0] = solution;
+        ghosted[1] = old_solution;
+        ghosted[2] = old_old_solution;
+        parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer_(
+          dof_handler);
+        transfer_.prepare_for_coarsening_and_refinement(
+          std::vector<const TrilinosWrappers::MPI::Vector *>{&ghosted[0], &ghosted[1], &ghosted[2]});
+        triangulation.execute_coarsening_and_refinement();
+        setup_dofs();
+        std::vector<TrilinosWrappers::MPI::Vector *> out{&solution, &old_solution,
+                                                          &old_old_solution};
+        transfer_.interpolate(out);
+        for (auto *v : out)
+          static_constraints.distribute(*v);
+      }
+  }
+
+  template <int dim>
+  void Simulation<dim>::make_constraints()
+  {
+    TimerOutput::Scope t(*timer, "constraints");
+    const FEValuesExtractors::Vector velocities(0);
+    const ComponentMask              u_mask = fe.component_mask(velocities);
+    const auto support = assembler.particle_support(dof_handler, relevant_dofs);
+
+    for (const bool homogeneous : {true, false})
+      {
+        AffineConstraints<double> &c = (homogeneous ? update_constraints : state_constraints);
+        c.clear();
+        c.reinit(relevant_dofs);
+        c.merge(static_constraints);
+        domain.make_wall_constraints(dof_handler, u_mask, homogeneous, c);
+        // λ = 0 where its support meets no particle (seed 3.15a): not part of the solve.
+        for (const auto i : multiplier_dofs)
+          if (!support.active_multipliers.is_element(i) && !c.is_constrained(i))
+            c.add_line(i);
+        // Pinning a pressure DoF drops the continuity equation of its cell. That is
+        // harmless only while nothing but the walls sees the pressure level: once the
+        // interior-pressure penalty acts, it fixes the level itself, and the dropped row
+        // would leave a mass source of the size of the penalty in the lower-corner cell,
+        // which breaks every mirror symmetry of a scene (doc/method.md §4).
+        if (!support.pressure_level_fixed && relevant_dofs.is_element(pressure_reference_dof) &&
+            !c.is_constrained(pressure_reference_dof))
+          c.add_line(pressure_reference_dof);
+        c.close();
+      }
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_matrix()
+  {
+    TimerOutput::Scope t(*timer, "setup");
+    // The pattern follows the constraints of this step: constrained DoFs (inactive λ,
+    // walls) keep only their diagonal, so the direct solver never sees the λ block away
+    // from the particles. Couplings of (F1)–(F3), doc/method.md §3: u with everything, λ_i with u_i and λ_i
+    // (rigidity, fluid penalty), λ_i with λ_j (strain penalty), p with u; p with p only for the diagonal of the
+    // constrained pressure-level DoF (cell-local, so cheap).
+    Table<2, DoFTools::Coupling> coupling(2 * dim + 1, 2 * dim + 1);
+    for (unsigned int i = 0; i < 2 * dim + 1; ++i)
+      for (unsigned int j = 0; j < 2 * dim + 1; ++j)
+        {
+          const bool u_i = i < dim, u_j = j < dim, p_i = i == 2 * dim, p_j = j == 2 * dim;
+          const bool same = (i % dim == j % dim) && !p_i && !p_j;
+          // The strain penalty couples the components of λ with each other.
+          const bool l_l = !u_i && !u_j && !p_i && !p_j;
+          coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || (p_i && p_j) || same || l_l) ?
+                             DoFTools::always :
+                             DoFTools::none;
+        }
+    TrilinosWrappers::SparsityPattern sparsity(owned_dofs, owned_dofs, relevant_dofs, comm);
+    DoFTools::make_sparsity_pattern(dof_handler, coupling, sparsity, update_constraints, false,
+                                    Utilities::MPI::this_mpi_process(comm));
+    sparsity.compress();
+    // A pattern equal to the one A has keeps A and whatever the linear solver built on it
+    // (a direct solver's symbolic factorization): steps in which no DoF changes its
+    // constraint status pay only for the new values.
+    const bool new_pattern = !system.has_pattern(sparsity);
+    if (new_pattern)
+      linear_solver->pattern_changed();
+    system.reinit(owned_dofs, relevant_dofs, sparsity, new_pattern, comm, particles.n_unknowns());
+    linear_solver->operator_changed();
+  }
+
+  template <int dim>
+  void Simulation<dim>::set_initial_pressure()
+  {
+    if (!hydrostatic_start)
+      return;
+    // Local L2 projection: p is discontinuous, so each cell is independent, and the linear
+    // hydrostatic field is reproduced exactly.
+    const FEValuesExtractors::Scalar pressure(2 * dim);
+    QGauss<dim>                      q(3);
+    FEValues<dim> fv(assembler.get_mapping(), fe, q,
+                     update_values | update_quadrature_points | update_JxW_values);
+    std::vector<unsigned int> p_dofs;
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      if (fe.system_to_component_index(i).first == 2 * dim)
+        p_dofs.push_back(i);
+    const unsigned int                   np = p_dofs.size();
+    FullMatrix<double>                   M(np, np);
+    Vector<double>                       b(np), x(np);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    const Tensor<1, dim>                 grad = fluid.hydrostatic_gradient();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          M = 0;
+          b = 0;
+          for (unsigned int qp = 0; qp < q.size(); ++qp)
+            {
+              const double ps = grad * (fv.quadrature_point(qp) - pressure_reference_point);
+              for (unsigned int i = 0; i < np; ++i)
+                {
+                  b(i) += ps * fv.shape_value(p_dofs[i], qp) * fv.JxW(qp);
+                  for (unsigned int j = 0; j < np; ++j)
+                    M(i, j) += fv.shape_value(p_dofs[i], qp) * fv.shape_value(p_dofs[j], qp) *
+                               fv.JxW(qp);
+                }
+            }
+          M.gauss_jordan();
+          M.vmult(x, b);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < np; ++i)
+            solution[dofs[p_dofs[i]]] = x(i);
+        }
+    solution.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  void Simulation<dim>::check_resolution()
+  {
+    // The ball must span cells for λ to see it; below one cell per radius it is a blur.
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &P = particles[k];
+        double               h = std::numeric_limits<double>::max();
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              cell->center().distance(P.position) < P.radius + cell->diameter())
+            h = std::min(h, cell->minimum_vertex_distance());
+        h = Utilities::MPI::min(h, comm);
+        if (P.radius < h)
+          pcout << "Warning: particle " << k + 1 << " (radius " << P.radius
+                << ") is smaller than the cells around it (h = " << h << ", d/h = "
+                << std::setprecision(3) << 2 * P.radius / h
+                << "): it is under-resolved; refine with Geometry/Global refinements or "
+                   "Refinement/Particle refinement levels."
+                << std::endl;
+      }
+  }
+
+  // The members defined in this file, for both dimensions.
+  template void Simulation<2>::start();
+  template void Simulation<2>::setup_dofs();
+  template void Simulation<2>::adapt_mesh(const bool);
+  template void Simulation<2>::make_constraints();
+  template void Simulation<2>::setup_matrix();
+  template void Simulation<2>::set_initial_pressure();
+  template void Simulation<2>::check_resolution();
+  template void Simulation<3>::start();
+  template void Simulation<3>::setup_dofs();
+  template void Simulation<3>::adapt_mesh(const bool);
+  template void Simulation<3>::make_constraints();
+  template void Simulation<3>::setup_matrix();
+  template void Simulation<3>::set_initial_pressure();
+  template void Simulation<3>::check_resolution();
+} // namespace fdparticle

@@ -1,0 +1,216 @@
+// Simulation: one time step. Newton's method on the step's system (through NewtonSolver),
+// the retry with a halved step when it fails (doc/method.md §5), and the particle forces.
+
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/core/simulation.h>
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace fdparticle
+{
+  template <int dim>
+  void Simulation<dim>::do_time_step(StepStatistics &stats)
+  {
+    const ParticleSet<dim> accepted = particles;
+    if (refinement.due(time.step_number()))
+      adapt_mesh(true);
+    // Back to the state of the last accepted step.
+    auto roll_back = [&]() {
+      particles = accepted;
+      solution = old_solution;
+      solution_ghost = solution;
+    };
+    // Give up: keep the last good state (checkpoint, fields) and say why.
+    auto stop = [&](const std::string &why) {
+      roll_back();
+      write_checkpoint();
+      if (!output.vtu_due(time.step_number()))
+        write_output(true);
+      throw CollectiveError(
+        why + " The state at t = " + std::to_string(time.time()) + " (step " +
+        std::to_string(time.step_number()) + ") is in the checkpoint '" +
+        checkpointer.directory() + "' (resume with Checkpointing/Resume = true).");
+    };
+    for (;;)
+      {
+        stats.dt = time.next_step();
+        particles.prepare_step(time);
+        make_constraints();
+        setup_matrix();
+        // A failed Newton solve is retried with a smaller step, like a position check below.
+        const NewtonSolver::Result result  = solve_time_step(stats);
+        std::string                failure = result.message;
+        const std::string when = "At t = " + std::to_string(time.time() + time.next_step()) +
+                                 " (step " + std::to_string(time.step_number() + 1) +
+                                 ", dt = " + ParameterTools::format_short(time.next_step()) + ")";
+        if (failure.empty())
+          {
+            // Positions are checked before the step is accepted. A ball that went through
+            // the wall repulsion's range in one step (a fast particle, a long step) is a
+            // failed step like a Newton failure: with a shorter step the implicit repulsion
+            // acts in time. Only when Δt cannot be halved further does the run stop.
+            particles.finish_step(time);
+            try
+              {
+                particles.check_positions(domain, time.time() + time.next_step());
+                return;
+              }
+            catch (const std::exception &e)
+              {
+                failure = ParameterTools::one_line_message(e);
+                if (!failure.empty() && failure.back() == '.')
+                  failure.pop_back();
+              }
+          }
+        roll_back();
+        if (!time.reduce_step())
+          stop(when + ": " + failure +
+               "; the time step cannot be halved further (Time/Max time step reductions).");
+        pcout << "  " << when << ": " << failure << "; retrying with dt = " << time.next_step()
+              << std::endl;
+      }
+  }
+
+  template <int dim>
+  NewtonSolver::Result Simulation<dim>::solve_time_step(StepStatistics &stats)
+  {
+    const auto c = time.coefficients();
+    // BDF history of the fluid: c1 u^n + c2 u^{n−1}.
+    {
+      TrilinosWrappers::MPI::Vector h(owned_dofs, comm);
+      h.add(c[1], old_solution, c[2], old_old_solution);
+      history_ghost = h;
+    }
+    solution = old_solution;
+    state_constraints.distribute(solution);
+    solution_ghost = solution;
+
+    // The state before the last correction and the correction (dx, dy).
+    TrilinosWrappers::MPI::Vector x0, dx;
+    Eigen::VectorXd               y0, dy;
+    NewtonSolver::Problem         problem;
+    problem.linear   = !fluid.convection;
+    problem.assemble = [&](const bool with_jacobian) {
+      TimerOutput::Scope t(*timer, with_jacobian ? "assemble system" : "assemble residual");
+      last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
+                                          update_constraints, with_jacobian, system);
+      if (repulsion.enabled())
+        repulsion.add_to_particle_rows(particles, c, system.r_p,
+                                       with_jacobian ? &system.D : nullptr);
+      if (with_jacobian)
+        linear_solver->operator_changed();
+      return system.residual_norm();
+    };
+    problem.solve = [&]() {
+      {
+        TimerOutput::Scope t(*timer, "solve");
+        linear_solver->solve(system, newton.tolerance, dx, dy);
+        update_constraints.distribute(dx);
+      }
+      x0 = solution;
+      y0 = particles.get_unknowns();
+    };
+    problem.apply_update = [&](const double theta) {
+      solution = x0;
+      solution.add(theta, dx);
+      solution_ghost = solution;
+      particles.set_unknowns(y0 + theta * dy);
+    };
+    problem.describe_residual = [&]() { return describe_residual(); };
+
+    const NewtonSolver::Result result = newton.solve(problem);
+    stats.initial_residual            = result.initial_residual;
+    if (result.converged())
+      {
+        stats.nonlinear_iterations = result.iterations;
+        stats.residual             = result.residual;
+        update_particle_forces(last_integrals);
+      }
+    return result;
+  }
+
+  template <int dim>
+  void Simulation<dim>::update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals)
+  {
+    // doc/method.md §0, §9: F = ρ_f|P|(dV/dt − g) − <λ, e_i>, T = ρ_f J dω/dt − <λ, e_j × r>.
+    const auto c = time.coefficients();
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        Particle<dim> &P = particles[k];
+        const Tensor<1, dim> dVdt = c[0] * P.velocity + c[1] * P.velocity_old + c[2] * P.velocity_old2;
+        const Tensor<1, 3>   dwdt = c[0] * P.omega + c[1] * P.omega_old + c[2] * P.omega_old2;
+        P.force = fluid.density * P.volume() * (dVdt - fluid.gravity) - integrals[k].lambda_force;
+        P.torque = fluid.density * P.inertia() * dwdt - integrals[k].lambda_torque;
+        if (dim == 2)
+          P.torque[0] = P.torque[1] = 0;
+      }
+  }
+
+  template <int dim>
+  std::string Simulation<dim>::describe_residual() const
+  {
+    // The largest entry of each block of the residual; non-finite entries win.
+    auto bigger = [](const double a, const double b) {
+      return !std::isfinite(a) || (std::isfinite(b) && a > b);
+    };
+    double       fe_max[3] = {0, 0, 0}; // momentum, rigidity (λ rows), continuity
+    for (const auto i : system.r_fe.locally_owned_elements())
+      {
+        const double       v = std::abs(system.r_fe[i]);
+        const unsigned int block =
+          velocity_dofs.is_element(i) ? 0 : (multiplier_dofs.is_element(i) ? 1 : 2);
+        if (bigger(v, fe_max[block]))
+          fe_max[block] = v;
+      }
+    for (double &m : fe_max)
+      m = Utilities::MPI::max(std::isfinite(m) ? m : std::numeric_limits<double>::max(), comm);
+    const char *fe_names[3] = {"the fluid momentum equation", "the rigidity constraint (lambda rows)",
+                               "the continuity equation"};
+    unsigned int which = 0;
+    for (unsigned int b = 1; b < 3; ++b)
+      if (fe_max[b] > fe_max[which])
+        which = b;
+    std::string where = fe_names[which];
+    double      largest = fe_max[which];
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &P = particles[k];
+        if (P.first_unknown == numbers::invalid_unsigned_int)
+          continue;
+        for (unsigned int j = 0; j < RigidBody<dim>::n_unknowns; ++j)
+          {
+            const double v = std::abs(system.r_p[P.first_unknown + j]);
+            if (!bigger(v, largest))
+              continue;
+            largest = std::isfinite(v) ? v : std::numeric_limits<double>::max();
+            where = "particle " + std::to_string(k + 1) + "'s " +
+                    (j < dim ? std::string("force balance (") + "xyz"[j] + ")" :
+                               std::string(particles.closure() == AngularVelocityClosure::kinematic ?
+                                             "angular-velocity closure (" :
+                                             "torque balance (") +
+                                 "xyz"[RigidBody<dim>::rotation_component(j - dim)] + ")");
+          }
+      }
+    std::ostringstream s;
+    s << "largest residual entry " << std::setprecision(3)
+      << (largest == std::numeric_limits<double>::max() ? std::string("non-finite") : ParameterTools::format_short(largest))
+      << " in " << where;
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      if (particles[k].first_unknown != numbers::invalid_unsigned_int)
+        s << "; particle " << k + 1 << " V = (" << particles[k].velocity << ")";
+    return s.str();
+  }
+
+  // The members defined in this file, for both dimensions.
+  template void Simulation<2>::do_time_step(StepStatistics &);
+  template NewtonSolver::Result Simulation<2>::solve_time_step(StepStatistics &);
+  template void Simulation<2>::update_particle_forces(const std::vector<ParticleIntegrals<2>> &);
+  template std::string Simulation<2>::describe_residual() const;
+  template void Simulation<3>::do_time_step(StepStatistics &);
+  template NewtonSolver::Result Simulation<3>::solve_time_step(StepStatistics &);
+  template void Simulation<3>::update_particle_forces(const std::vector<ParticleIntegrals<3>> &);
+  template std::string Simulation<3>::describe_residual() const;
+} // namespace fdparticle
