@@ -64,14 +64,12 @@ namespace fdparticle
                                            format_short(result.initial_residual) + " to " +
                                            format_short(residual) + where());
         if (result.iterations >= max_iterations)
-          {
-            const std::string detail = where();
-            return fail(Outcome::too_many_iterations,
-                        "Newton did not converge in " + std::to_string(max_iterations) +
-                          " iterations (residual " + format_short(residual) + " from " +
-                          format_short(result.initial_residual) +
-                          (detail.empty() ? ")" : "; " + detail.substr(2)));
-          }
+          return fail(Outcome::too_many_iterations,
+                      "Newton did not converge in " + std::to_string(max_iterations) +
+                        " iterations (residual " + format_short(residual) + " from " +
+                        format_short(result.initial_residual) +
+                        (problem.describe_residual ? "; " + problem.describe_residual() : "") +
+                        ")");
         try
           {
             problem.solve();
