@@ -479,13 +479,18 @@ namespace fdparticle
 
   template <int dim>
   typename NavierStokesAssembler<dim>::ParticleSupport
-  NavierStokesAssembler<dim>::particle_support(const DoFHandler<dim> &dof_handler,
-                                               const IndexSet &       locally_relevant) const
+  NavierStokesAssembler<dim>::particle_support(const DoFHandler<dim> &         dof_handler,
+                                               const IndexSet &                 locally_relevant,
+                                               const AffineConstraints<double> &mesh_constraints) const
   {
     bool any_inside = false;
-    LinearAlgebra::distributed::Vector<double> marker(dof_handler.locally_owned_dofs(),
-                                                      locally_relevant,
-                                                      dof_handler.get_communicator());
+    // The λ DoFs of the cells a particle meets, and the masters of those among them that
+    // hanging nodes or periodicity tie to other DoFs: λ lives in the conforming space, whose
+    // basis function of a master includes its slaves' pieces, so the master's support meets
+    // the particle too. Without the masters, a constrained λ on a cut cell would be tied to
+    // a λ = 0 of the fluid (and which of two periodic DoFs is the master depends on the
+    // partition, so the results would depend on the number of ranks).
+    std::vector<types::global_dof_index> marked;
     FEValues<dim> fe_regular(mapping, fe, quadrature.regular_rule(), update_quadrature_points);
     FEValues<dim> fe_cut(mapping, fe, quadrature.cut_rule(), update_quadrature_points);
     std::unique_ptr<FEValues<dim>>            fe_cell_specific;
@@ -511,10 +516,27 @@ namespace fdparticle
         for (unsigned int i = 0; i < dof_indices.size(); ++i)
           {
             const unsigned int c_i = fe.system_to_component_index(i).first;
-            if (c_i >= dim && c_i < 2 * dim)
-              marker[dof_indices[i]] = 1;
+            if (c_i < dim || c_i >= 2 * dim)
+              continue;
+            marked.push_back(dof_indices[i]);
+            if (const auto *line = mesh_constraints.get_constraint_entries(dof_indices[i]))
+              for (const auto &entry : *line)
+                marked.push_back(entry.first);
           }
       }
+    // Masters may lie outside the locally relevant DoFs: they are ghosts of the marker.
+    IndexSet ghosts = locally_relevant;
+    {
+      IndexSet masters(dof_handler.n_dofs());
+      std::sort(marked.begin(), marked.end());
+      marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+      masters.add_indices(marked.begin(), marked.end());
+      ghosts.add_indices(masters);
+    }
+    LinearAlgebra::distributed::Vector<double> marker(dof_handler.locally_owned_dofs(), ghosts,
+                                                      dof_handler.get_communicator());
+    for (const auto i : marked)
+      marker[i] = 1;
     marker.compress(VectorOperation::max);
     marker.update_ghost_values();
     ParticleSupport support;

@@ -62,30 +62,50 @@ namespace fdparticle
 
   template <int dim>
   bool ParticleRefinement<dim>::in_band(const typename Triangulation<dim>::cell_iterator &cell,
-                                        const ParticleSet<dim> &particles) const
+                                        const ParticleSet<dim> &particles,
+                                        const Domain<dim> &     domain) const
   {
+    // In a periodic direction the band wraps around the boundary: the cell's images a
+    // period to either side are tested too, so a ball near a periodic face has the same
+    // mesh around it as in the middle of the box (and no hanging nodes across that face).
+    std::vector<BoundingBox<dim>> images{cell->bounding_box()};
+    for (unsigned int d = 0; d < dim; ++d)
+      if (domain.is_periodic(d))
+        {
+          const double period = domain.upper_corner()[d] - domain.lower_corner()[d];
+          const std::size_t n = images.size();
+          for (std::size_t i = 0; i < n; ++i)
+            for (const double shift : {-period, period})
+              {
+                auto corners = images[i].get_boundary_points();
+                corners.first[d] += shift;
+                corners.second[d] += shift;
+                images.emplace_back(corners);
+              }
+        }
     // Distance from the surface |x − X| = R to the cell's box, against band × diameter.
-    const auto   box = cell->bounding_box();
     const double h = cell->diameter() / std::sqrt(double(dim));
+    const double margin = band_width * h;
     for (unsigned int k = 0; k < particles.size(); ++k)
-      {
-        const Particle<dim> &p = particles[k];
-        // The box's farthest point from the centre: the far corner in every direction.
-        double far2 = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
-                                    std::abs(p.geometry_center[d] - box.upper_bound(d))),
-                           2);
-        const double margin = band_width * h;
-        if (p.distance_to(box) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
-          return true;
-      }
+      for (const auto &box : images)
+        {
+          const Particle<dim> &p = particles[k];
+          // The box's farthest point from the centre: the far corner in every direction.
+          double far2 = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
+                                      std::abs(p.geometry_center[d] - box.upper_bound(d))),
+                             2);
+          if (p.distance_to(box) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
+            return true;
+        }
     return false;
   }
 
   template <int dim>
   bool ParticleRefinement<dim>::mark(parallel::distributed::Triangulation<dim> &triangulation,
                                      const ParticleSet<dim> &particles,
+                                     const Domain<dim> &     domain,
                                      const unsigned int      base_level) const
   {
     bool changed = false;
@@ -95,7 +115,7 @@ namespace fdparticle
           // Coarsen only where the parent would not be refined again: a child can leave
           // the band (its own margin is smaller) while its parent is still in it, and the
           // mesh would flip between the two every step.
-          if (in_band(cell, particles))
+          if (in_band(cell, particles, domain))
             {
               if (cell->level() < int(base_level + n_levels))
                 {
@@ -103,7 +123,7 @@ namespace fdparticle
                   changed = true;
                 }
             }
-          else if (cell->level() > int(base_level) && !in_band(cell->parent(), particles))
+          else if (cell->level() > int(base_level) && !in_band(cell->parent(), particles, domain))
             {
               cell->set_coarsen_flag();
               changed = true;

@@ -70,16 +70,19 @@ namespace fdparticle
     /// Where the particles are, as the constraints of a step need it.
     struct ParticleSupport
     {
-      /// λ DoFs whose support contains a quadrature point inside a particle; the others
-      /// are constrained to zero (λ = 0 in the fluid, seed 3.15a).
+      /// λ DoFs whose support (as basis functions of the conforming space, after the mesh
+      /// constraints) contains a quadrature point inside a particle; the others are
+      /// constrained to zero (λ = 0 in the fluid, seed 3.15a).
       IndexSet active_multipliers;
       /// True when the interior-pressure penalty acts on some cell (on any rank): it then
       /// fixes the pressure level, and no pressure DoF may be pinned (doc/method.md §4).
       bool pressure_level_fixed = false;
     };
 
-    ParticleSupport particle_support(const DoFHandler<dim> &dof_handler,
-                                     const IndexSet &       locally_relevant) const;
+    /// mesh_constraints: the hanging-node and periodicity constraints (closed).
+    ParticleSupport particle_support(const DoFHandler<dim> &         dof_handler,
+                                     const IndexSet &                 locally_relevant,
+                                     const AffineConstraints<double> &mesh_constraints) const;
 
     /// Per-cell volume fraction of particles (for output).
     Vector<float> particle_fraction(const DoFHandler<dim> &dof_handler) const;

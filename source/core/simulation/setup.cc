@@ -116,7 +116,7 @@ namespace fdparticle
     // cell per step, so after the initial passes one pass a step keeps up.
     for (unsigned int pass = 0; pass <= refinement.levels(); ++pass)
       {
-        if (!refinement.mark(triangulation, particles, base_level))
+        if (!refinement.mark(triangulation, particles, domain, base_level))
           return;
         TimerOutput::Scope t(*timer, "refinement");
         triangulation.prepare_coarsening_and_refinement();
@@ -149,7 +149,7 @@ namespace fdparticle
     TimerOutput::Scope t(*timer, "constraints");
     const FEValuesExtractors::Vector velocities(0);
     const ComponentMask              u_mask = fe.component_mask(velocities);
-    const auto support = assembler.particle_support(dof_handler, relevant_dofs);
+    const auto support = assembler.particle_support(dof_handler, relevant_dofs, static_constraints);
 
     for (const bool homogeneous : {true, false})
       {

@@ -1,0 +1,155 @@
+// Unit test of fdparticle::ParticleRefinement (include/fdparticle/fem/particle_refinement.h):
+// the band of refined cells around a ball near a periodic face.
+//
+// A ball a short distance from the face x = 0 of a box periodic in x is as close to the
+// cells at x = 1 as to those at x = 0: the band must reach across the face, and the
+// adapted mesh must be the mirror image of itself through the ball's centre (a grid line,
+// so the mirror maps the grid to itself), which it is not when the band stops at the face.
+// The same box without periodicity keeps the far cells coarse.
+
+#include <deal.II/distributed/tria.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/fem/particle_refinement.h>
+#include <fdparticle/particles/particle_set.h>
+
+#include "unit_check.h"
+
+#include <map>
+#include <string>
+
+using namespace dealii;
+using namespace fdparticle;
+using namespace unit_check;
+
+namespace
+{
+  template <int dim>
+  struct Scene
+  {
+    /// A unit box of N^dim cells, periodic in the directions listed (e.g. "x, z"), with one
+    /// ball and the given number of refinement levels around it.
+    Scene(const unsigned int N, const std::string &periodic, const std::string &ball,
+          const unsigned int levels)
+      : tria(MPI_COMM_WORLD)
+    {
+      ParameterHandler prm;
+      declare_all_parameters(prm);
+      prm.parse_input_from_string(unit_box_parameters<dim>(N) +
+                                  "subsection Geometry\n  set Periodic directions = " + periodic +
+                                  "\nend\nsubsection Particles\n  set Particles = " + ball +
+                                  "\nend\nsubsection Refinement\n  set Particle refinement levels = " +
+                                  std::to_string(levels) + "\nend\n");
+      domain.parse_parameters(prm);
+      particles.parse_parameters(prm, domain);
+      refinement.parse_parameters(prm);
+      domain.create_mesh(tria);
+    }
+
+    /// Whether the active cell whose box is [lower, upper] lies in the band.
+    bool cell_in_band(const Point<dim> &lower, const Point<dim> &upper) const
+    {
+      const Point<dim> center = 0.5 * (lower + upper);
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->center().distance(center) < 1e-12)
+          return refinement.in_band(cell, particles, domain);
+      check(false, "the test's cell exists", "");
+      return false;
+    }
+
+    /// The passes Simulation makes at the start (one more than levels: the last coarsens).
+    void adapt()
+    {
+      for (unsigned int pass = 0; pass <= refinement.levels(); ++pass)
+        if (refinement.mark(tria, particles, domain, 0))
+          tria.execute_coarsening_and_refinement();
+    }
+
+    Domain<dim>                               domain;
+    ParticleSet<dim>                          particles;
+    ParticleRefinement<dim>                   refinement;
+    parallel::distributed::Triangulation<dim> tria;
+  };
+
+  /// Key of a point for a map: coordinates rounded to 1e-9 (the cells here are ≥ 1/32).
+  template <int dim>
+  std::array<long, dim> key(const Point<dim> &x)
+  {
+    std::array<long, dim> k;
+    for (unsigned int d = 0; d < dim; ++d)
+      k[d] = std::lround(x[d] * 1e9);
+    return k;
+  }
+
+  /// Active cells without a mirror image (through the plane x = x0, wrapped into the
+  /// periodic unit interval) of the same level.
+  template <int dim>
+  unsigned int cells_without_mirror_image(const Triangulation<dim> &tria, const double x0)
+  {
+    std::map<std::array<long, dim>, int> level_of;
+    for (const auto &cell : tria.active_cell_iterators())
+      level_of[key(cell->center())] = cell->level();
+    unsigned int n = 0;
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        Point<dim> image = cell->center();
+        image[0] = 2 * x0 - image[0];
+        image[0] -= std::floor(image[0]);
+        const auto it = level_of.find(key(image));
+        n += (it == level_of.end() || it->second != cell->level());
+      }
+    return n;
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  std::cout << "2D: ball at x = 0.125, R = 0.1, on an 8 x 8 unit box (h = 1/8)" << std::endl;
+  {
+    // The ball's surface is 0.025 from the face x = 0; the cell [7/8, 1] x [3/8, 1/2] is
+    // that far plus nothing from it across the periodic face, 0.775 without periodicity.
+    const std::string ball = "0.125, 0.5 : 0.1 : 1";
+    const Point<2>    far_lower(0.875, 0.375), far_upper(1, 0.5);
+    Scene<2>          walled(8, "", ball, 2);
+    Scene<2>          periodic(8, "x", ball, 2);
+    check(!walled.cell_in_band(far_lower, far_upper),
+          "between walls the cell at the far face is outside the band");
+    check(periodic.cell_in_band(far_lower, far_upper),
+          "periodic in x the cell across the face is inside the band");
+    check(!periodic.cell_in_band(Point<2>(0.5, 0.375), Point<2>(0.625, 0.5)),
+          "periodic in x a cell in the middle of the box is outside the band");
+
+    periodic.adapt();
+    walled.adapt();
+    const unsigned int n_periodic = cells_without_mirror_image(periodic.tria, 0.125);
+    check(n_periodic == 0,
+          "periodic: the adapted mesh is its own mirror image through the ball's centre",
+          std::to_string(n_periodic) + " of " + std::to_string(periodic.tria.n_active_cells()) +
+            " cells have none");
+    check(periodic.tria.n_active_cells() > walled.tria.n_active_cells(),
+          "periodic: the band across the face adds cells",
+          std::to_string(periodic.tria.n_active_cells()) + " vs " +
+            std::to_string(walled.tria.n_active_cells()));
+  }
+
+  std::cout << "3D: ball near the edge x = z = 0 of a 4^3 unit box periodic in x and z" << std::endl;
+  {
+    // The cell [3/4, 1] x [1/4, 1/2] x [3/4, 1] is near the ball only through its image
+    // shifted in x and z at once.
+    const std::string ball = "0.1, 0.4, 0.1 : 0.08 : 1";
+    const Point<3>    corner_lower(0.75, 0.25, 0.75), corner_upper(1, 0.5, 1);
+    Scene<3>          both(4, "x, z", ball, 1);
+    Scene<3>          x_only(4, "x", ball, 1);
+    check(both.cell_in_band(corner_lower, corner_upper),
+          "periodic in x and z the cell across the edge is inside the band");
+    check(!x_only.cell_in_band(corner_lower, corner_upper),
+          "periodic in x only the cell across the edge is outside the band");
+    check(x_only.cell_in_band(Point<3>(0.75, 0.25, 0), Point<3>(1, 0.5, 0.25)),
+          "periodic in x only the cell across the face x = 0 is inside the band");
+  }
+  return summary();
+}
