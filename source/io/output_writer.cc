@@ -5,6 +5,7 @@
 
 #include <fdparticle/io/output_writer.h>
 #include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/fem/introspection.h>
 
 #include <filesystem>
 #include <iomanip>
@@ -39,6 +40,99 @@ namespace fdparticle
 
   namespace
   {
+    using Columns = std::vector<std::pair<std::string, double>>;
+
+    /// A tensor as three numbers: unused components (z in 2D) are 0.
+    template <int d>
+    std::array<double, 3> three(const Tensor<1, d> &t)
+    {
+      std::array<double, 3> a{{0, 0, 0}};
+      for (int i = 0; i < std::min(3, d); ++i)
+        a[i] = t[i];
+      return a;
+    }
+
+    /// One definition of each table: the header is the list's names, a row its values.
+    Columns statistics_columns(const StepStatistics &s)
+    {
+      return {{"step", double(s.step)},
+              {"time", s.time},
+              {"dt", s.dt},
+              {"cells", double(s.cells)},
+              {"dofs", double(s.dofs)},
+              {"nonlinear_iterations", double(s.nonlinear_iterations)},
+              {"residual", s.residual},
+              {"wall_seconds", s.wall_seconds},
+              {"initial_residual", s.initial_residual},
+              {"max_velocity", s.max_velocity},
+              {"hydrostatic_deviation", s.hydrostatic_deviation},
+              {"coarse_cut_cells", double(s.coarse_cut_cells)},
+              {"time_step_reductions", double(s.time_step_reductions)},
+              {"mean_vx", s.mean_velocity[0]},
+              {"mean_vy", s.mean_velocity[1]},
+              {"mean_vz", s.mean_velocity[2]}};
+    }
+
+    /// One row of particles.csv per particle: in 2D z, the in-plane ω and torque are 0.
+    template <int dim>
+    Columns particle_columns(const double time, const Particle<dim> &P)
+    {
+      Columns columns{{"time", time}, {"id", double(P.id)}};
+      const std::pair<std::string, std::array<double, 3>> vectors[] = {
+        {"", three(P.position)},       {"v", three(P.velocity)}, {"w", three(P.omega)},
+        {"f", three(P.force)},         {"t", three(P.torque)},
+        {"contact_f", three(P.contact_force)}};
+      for (const auto &[prefix, values] : vectors)
+        for (unsigned int d = 0; d < 3; ++d)
+          columns.emplace_back(prefix + "xyz"[d], values[d]);
+      return columns;
+    }
+
+    /// The point data of a particle in the VTU files: scalars, and vectors of dim
+    /// components. In 2D the angular velocity, torque and rotation are the z components.
+    template <int dim>
+    std::vector<std::pair<std::string, std::vector<double>>>
+    particle_point_data(const Particle<dim> &P)
+    {
+      const auto vector = [](const Tensor<1, dim> &t) {
+        std::vector<double> v(dim);
+        for (unsigned int d = 0; d < dim; ++d)
+          v[d] = t[d];
+        return v;
+      };
+      // Axial vectors (ω, T, the rotation angle × axis) have one component in 2D.
+      const auto axial = [](const Tensor<1, 3> &t) {
+        return dim == 2 ? std::vector<double>{t[2]} : std::vector<double>{t[0], t[1], t[2]};
+      };
+      const Eigen::AngleAxisd turn(P.orientation);
+      Tensor<1, 3>            rotation;
+      for (unsigned int d = 0; d < 3; ++d)
+        rotation[d] = turn.angle() * turn.axis()[d];
+      return {{"id", {double(P.id)}},
+              {"radius", {P.radius}},
+              {"density", {P.density}},
+              {"velocity", vector(P.velocity)},
+              {"angular_velocity", axial(P.omega)},
+              {"rotation", axial(rotation)},
+              {"force", vector(P.force)},
+              {"torque", axial(P.torque)},
+              {"contact_force", vector(P.contact_force)}};
+    }
+
+    void write_header(std::ostream &out, const Columns &columns)
+    {
+      for (unsigned int i = 0; i < columns.size(); ++i)
+        out << (i > 0 ? "," : "") << columns[i].first;
+      out << '\n';
+    }
+
+    void write_row(std::ostream &out, const Columns &columns)
+    {
+      for (unsigned int i = 0; i < columns.size(); ++i)
+        out << (i > 0 ? "," : "") << columns[i].second;
+      out << '\n';
+    }
+
     /// Keep the header and the rows whose first field is at most 'last'; used on restart.
     void truncate_table(const std::string &file, const double last)
     {
@@ -100,12 +194,9 @@ namespace fdparticle
         return;
       }
     particles_csv.open(particles_file);
-    particles_csv << "time,id,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz,"
-                     "contact_fx,contact_fy,contact_fz\n";
+    write_header(particles_csv, particle_columns(0, Particle<dim>()));
     statistics_csv.open(statistics_file);
-    statistics_csv << "step,time,dt,cells,dofs,nonlinear_iterations,residual,wall_seconds,"
-                      "initial_residual,max_velocity,hydrostatic_deviation,coarse_cut_cells,"
-                      "time_step_reductions,mean_vx,mean_vy,mean_vz\n";
+    write_header(statistics_csv, statistics_columns(StepStatistics()));
   }
 
   template <int dim>
@@ -140,22 +231,7 @@ namespace fdparticle
       return;
     particles_csv << std::setprecision(12);
     for (unsigned int k = 0; k < particles.size(); ++k)
-      {
-        const Particle<dim> &P = particles[k];
-        // Unused components (z in 2D, in-plane ω and torque) are written as 0.
-        auto three = [](const auto &t) {
-          std::array<double, 3> a{{0, 0, 0}};
-          for (unsigned int d = 0; d < std::min<unsigned int>(3, t.dimension); ++d)
-            a[d] = t[d];
-          return a;
-        };
-        particles_csv << time << ',' << P.id;
-        for (const auto &v : {three(P.position), three(P.velocity), three(P.omega),
-                              three(P.force), three(P.torque), three(P.contact_force)})
-          for (const double x : v)
-            particles_csv << ',' << x;
-        particles_csv << '\n';
-      }
+      write_row(particles_csv, particle_columns(time, particles[k]));
     particles_csv.flush();
   }
 
@@ -164,13 +240,8 @@ namespace fdparticle
   {
     if (!root)
       return;
-    statistics_csv << std::setprecision(10) << s.step << ',' << s.time << ',' << s.dt << ','
-                   << s.cells << ',' << s.dofs << ',' << s.nonlinear_iterations << ','
-                   << s.residual << ',' << s.wall_seconds << ',' << s.initial_residual << ','
-                   << s.max_velocity << ',' << s.hydrostatic_deviation << ','
-                   << s.coarse_cut_cells << ',' << s.time_step_reductions << ','
-                   << s.mean_velocity[0] << ',' << s.mean_velocity[1] << ','
-                   << s.mean_velocity[2] << '\n';
+    statistics_csv << std::setprecision(10);
+    write_row(statistics_csv, statistics_columns(s));
     statistics_csv.flush();
   }
 
@@ -190,7 +261,7 @@ namespace fdparticle
     names.insert(names.end(), dim, "lambda");
     names.emplace_back("pressure");
     std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
-      2 * dim, DataComponentInterpretation::component_is_part_of_vector);
+      Introspection<dim>::pressure_component, DataComponentInterpretation::component_is_part_of_vector);
     interpretation.push_back(DataComponentInterpretation::component_is_scalar);
 
     DataOut<dim> data_out;
@@ -200,7 +271,7 @@ namespace fdparticle
     Vector<float> subdomain(dof_handler.get_triangulation().n_active_cells());
     subdomain = static_cast<float>(rank);
     data_out.add_data_vector(subdomain, "subdomain");
-    data_out.build_patches(mapping, 2);
+    data_out.build_patches(mapping, Introspection<dim>::output_subdivisions);
 
     const std::string piece = "solution-" + counter + "." + Utilities::int_to_string(rank, 4) + ".vtu";
     std::ofstream     out(output_directory + "/" + piece);
@@ -218,57 +289,39 @@ namespace fdparticle
     std::ofstream pvd(output_directory + "/solution.pvd");
     DataOutBase::write_pvd_record(pvd, solution_records);
 
-    // One VTK point per particle; ParaView draws spheres with a glyph scaled by 'radius'.
+    // One VTK point per particle (deal.II's point patches); ParaView draws spheres with a
+    // glyph scaled by 'radius'. VTU data is single precision: exact values are in the CSV.
+    std::vector<DataOutBase::Patch<0, dim>> patches(particles.size());
+    std::vector<std::string>                point_names;
+    std::vector<std::tuple<unsigned int, unsigned int, std::string,
+                           DataComponentInterpretation::DataComponentInterpretation>>
+      vectors;
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const auto data = particle_point_data(particles[k]);
+        patches[k].vertices[0] = particles[k].position;
+        patches[k].patch_index = k;
+        unsigned int n_values = 0;
+        for (const auto &field : data)
+          n_values += field.second.size();
+        patches[k].data.reinit(n_values, 1);
+        unsigned int row = 0;
+        for (const auto &[name, values] : data)
+          {
+            if (k == 0)
+              {
+                if (values.size() > 1)
+                  vectors.emplace_back(row, row + values.size() - 1, name,
+                                       DataComponentInterpretation::component_is_part_of_vector);
+                point_names.insert(point_names.end(), values.size(), name);
+              }
+            for (const double v : values)
+              patches[k].data(row++, 0) = v;
+          }
+      }
     const std::string particles_vtu = "particles-" + counter + ".vtu";
     std::ofstream     pout(output_directory + "/" + particles_vtu);
-    const unsigned int np = particles.size();
-    pout << std::setprecision(12)
-         << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
-         << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << np << "\" NumberOfCells=\"" << np
-         << "\">\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (unsigned int k = 0; k < np; ++k)
-      {
-        for (unsigned int d = 0; d < 3; ++d)
-          pout << (d < dim ? particles[k].position[d] : 0.0) << ' ';
-        pout << '\n';
-      }
-    pout << "</DataArray>\n</Points>\n<Cells>\n"
-         << "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (unsigned int k = 0; k < np; ++k)
-      pout << k << ' ';
-    pout << "\n</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
-    for (unsigned int k = 0; k < np; ++k)
-      pout << k + 1 << ' ';
-    pout << "\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    for (unsigned int k = 0; k < np; ++k)
-      pout << "1 ";
-    pout << "\n</DataArray>\n</Cells>\n<PointData Scalars=\"radius\">\n";
-    auto array = [&](const std::string &name, const unsigned int n_comp, auto value) {
-      pout << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\""
-           << n_comp << "\" format=\"ascii\">\n";
-      for (unsigned int k = 0; k < np; ++k)
-        {
-          for (unsigned int c = 0; c < n_comp; ++c)
-            pout << value(particles[k], c) << ' ';
-          pout << '\n';
-        }
-      pout << "</DataArray>\n";
-    };
-    array("id", 1, [](const Particle<dim> &P, unsigned int) { return double(P.id); });
-    array("radius", 1, [](const Particle<dim> &P, unsigned int) { return P.radius; });
-    array("density", 1, [](const Particle<dim> &P, unsigned int) { return P.density; });
-    array("velocity", 3, [](const Particle<dim> &P, unsigned int c) {
-      return c < dim ? P.velocity[c] : 0.0;
-    });
-    array("angular_velocity", 3, [](const Particle<dim> &P, unsigned int c) { return P.omega[c]; });
-    array("orientation", 4, [](const Particle<dim> &P, unsigned int c) {
-      return P.orientation.coeffs()[(c + 3) % 4]; // w, x, y, z
-    });
-    array("force", 3, [](const Particle<dim> &P, unsigned int c) {
-      return c < dim ? P.force[c] : 0.0;
-    });
-    array("torque", 3, [](const Particle<dim> &P, unsigned int c) { return P.torque[c]; });
-    pout << "</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    DataOutBase::write_vtu(patches, point_names, vectors, DataOutBase::VtkFlags(time, step), pout);
     particle_records.emplace_back(time, particles_vtu);
     std::ofstream ppvd(output_directory + "/particles.pvd");
     DataOutBase::write_pvd_record(ppvd, particle_records);

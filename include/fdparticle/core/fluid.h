@@ -2,6 +2,7 @@
 #define fdparticle_core_fluid_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
 namespace fdparticle
@@ -27,6 +28,11 @@ namespace fdparticle
 
     /// ρ_f g + f: the gradient of the hydrostatic pressure.
     Tensor<1, dim> hydrostatic_gradient() const { return density * gravity + body_force; }
+    /// The hydrostatic pressure at x, zero at x_ref: (ρ_f g + f)·(x − x_ref).
+    double hydrostatic_pressure(const Point<dim> &x, const Point<dim> &x_ref) const
+    {
+      return hydrostatic_gradient() * (x - x_ref);
+    }
   };
 } // namespace fdparticle
 

@@ -7,6 +7,7 @@
 #include <deal.II/hp/q_collection.h>
 #include <deal.II/non_matching/quadrature_generator.h>
 
+#include <fdparticle/fem/introspection.h>
 #include <fdparticle/particles/particle_set.h>
 
 #include <memory>
@@ -99,7 +100,7 @@ namespace fdparticle
     Method         cut_method = Method::gauss;
     unsigned int   n_cut_points = 7;
     unsigned int   level_set_order = 6;
-    QGauss<dim>    regular{3};
+    QGauss<dim>    regular = Introspection<dim>::cell_quadrature();
     QGauss<dim>    cut{7};
     hp::QCollection<1>                                     level_set_rules_1d;
     std::unique_ptr<NonMatching::QuadratureGenerator<dim>> generator;

@@ -9,10 +9,17 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <fdparticle/solvers/newton_system.h>
-#include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/core/fluid.h>
+#include <fdparticle/fem/assembly/assembly_term.h>
+#include <fdparticle/fem/assembly/cut_cell_penalties.h>
+#include <fdparticle/fem/assembly/fluid_momentum.h>
+#include <fdparticle/fem/assembly/interior_pressure.h>
+#include <fdparticle/fem/assembly/multiplier_pairing.h>
+#include <fdparticle/fem/assembly/particle_equations.h>
+#include <fdparticle/fem/assembly/particle_integrals.h>
+#include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/particles/particle_set.h>
+#include <fdparticle/solvers/newton_system.h>
 
 #include <array>
 #include <memory>
@@ -22,28 +29,21 @@ namespace fdparticle
 {
   using namespace dealii;
 
-  /// Integrals over each ball that the particle equations and the reported forces need.
-  template <int dim>
-  struct ParticleIntegrals
-  {
-    Tensor<1, dim> lambda_force;  ///< <λ, e_i>_P = ∫_P α λ_i
-    Tensor<1, 3>   lambda_torque; ///< <λ, e_j × r>_P
-    Tensor<1, 3>   curl_u;        ///< ∫_P ∇ × u
-    double         volume = 0;    ///< ∫_P 1 by the cut-cell rule
-  };
-
   /**
-   * Residual and exact Jacobian of equations (F1)–(F5) (doc/method.md §0, §3) at t^{n+1}, with the
-   * particle geometry frozen during the step. Sign convention: the residual R is the
-   * left-hand side of each equation; Newton solves J δ = −R.
+   * Residual and exact Jacobian of equations (F1)–(F5) (doc/method.md §0, §3) at t^{n+1},
+   * with the particle geometry frozen during the step. Sign convention: the residual R is
+   * the left-hand side of each equation; Newton solves J δ = −R.
    *
-   *  1. momentum   ∫ ρ(∂_t u + u·∇u − g)·v − f·v + 2μ ε(u):ε(v) − p ∇·v − Σ_k <λ, v>_{P_k}
-   *  2. continuity −∫ q ∇·u  (− (δ/μ) ∫ (p − p_hydrostatic) q in cells inside a particle)
-   *  3. rigidity   <η, u − V_k − ω_k × r>_{P_k}  (+ s α ∫_{Ω_f ∩ cut cells} λ·η)
-   *  4. translation (ρ_k − ρ_f)|P_k|(dV_k/dt − g) + <λ, e_i>_{P_k}
-   *  5. rotation   (ρ_k − ρ_f) J_k dω_k/dt + <λ, e_j × r>_{P_k}, or the seed's kinematic
-   *                closure |P_k| ω_k − ½ ∫_{P_k} ∇ × u
-   * with <λ, v>_P = ∫_P α λ·v + μ ∇λ:∇v and α = ρ_f c0 (3ρ_f/(2Δt) for BDF2).
+   * The cell loop chooses each cell's quadrature (CutCellQuadrature), evaluates the iterate
+   * at its points (AssemblyScratch) and lets the terms add to the cell's matrix and vectors
+   * (AssemblyCopy), point by point in this order:
+   *   FluidMomentum      (F1)–(F2) without λ
+   *   InteriorPressure   the pressure level inside rigid bodies
+   *   MultiplierPairing  −<λ, v> in (F1), (F3), the border of the free particles
+   *   CutCellPenalties   the fluid and strain penalties of (F3) on cut cells
+   * then the particle rows (F4)–(F5) come from the integrals (ParticleEquations). The
+   * pairing is <λ, v>_P = ∫_P α λ·v + μ ∇λ:∇v with α = ρ_f c0 (3ρ_f/(2Δt) for BDF2), or
+   * from Multiplier/Pairing time step.
    */
   template <int dim>
   class NavierStokesAssembler
@@ -55,6 +55,9 @@ namespace fdparticle
     NavierStokesAssembler(const FESystem<dim> &fe, const Fluid<dim> &fluid,
                           const ParticleSet<dim> &particles,
                           const CutCellQuadrature<dim> &quadrature);
+    /// The term list points into this object.
+    NavierStokesAssembler(const NavierStokesAssembler &) = delete;
+    NavierStokesAssembler &operator=(const NavierStokesAssembler &) = delete;
 
     /**
      * Assemble R (and J if with_matrix) at the iterate (solution, particle unknowns as
@@ -90,7 +93,7 @@ namespace fdparticle
     const MappingQ<dim> &get_mapping() const { return mapping; }
 
     /// The point where the hydrostatic pressure is zero (the pressure level's cell centre).
-    void set_pressure_reference(const Point<dim> &x) { pressure_reference = x; }
+    void set_pressure_reference(const Point<dim> &x) { interior_pressure.set_reference_point(x); }
 
   private:
     const FESystem<dim> &         fe;
@@ -98,12 +101,15 @@ namespace fdparticle
     const ParticleSet<dim> &      particles;
     const CutCellQuadrature<dim> &quadrature;
     MappingQ<dim>                 mapping{1};
-    double                        fluid_penalty = 0.01;
-    double                        strain_penalty = 0.15;
-    double                        penalty_ramp = 0.2;
     double                        pairing_time_step = 0.0; // 0: α = ρ c0 of the current step
-    double                        interior_pressure_penalty = 1e-3;
-    Point<dim>                    pressure_reference;
+
+    FluidMomentum<dim>     fluid_momentum;
+    InteriorPressure<dim>  interior_pressure;
+    MultiplierPairing<dim> multiplier_pairing;
+    CutCellPenalties<dim>  cut_cell_penalties;
+    ParticleEquations<dim> particle_equations;
+    /// The terms of the cell loop, in the order they are called at each point.
+    std::vector<const AssemblyTerm<dim> *> terms;
   };
 } // namespace fdparticle
 

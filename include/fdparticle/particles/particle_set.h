@@ -71,6 +71,16 @@ namespace fdparticle
       return Point<dim>((velocity - c[1] * position - c[2] * position_old) / c[0]);
     }
 
+    /// dV/dt and dω/dt at the end of the step by the BDF formula with coefficients c
+    /// (doc/method.md §2), at the current iterate of V and ω.
+    Tensor<1, dim> acceleration(const std::array<double, 3> &c) const
+    {
+      return c[0] * velocity + c[1] * velocity_old + c[2] * velocity_old2;
+    }
+    Tensor<1, 3> angular_acceleration(const std::array<double, 3> &c) const
+    {
+      return c[0] * omega + c[1] * omega_old + c[2] * omega_old2;
+    }
     double volume() const { return RigidBody<dim>::volume(radius); }
     double inertia() const { return RigidBody<dim>::inertia(radius); }
     bool   contains(const Point<dim> &x) const

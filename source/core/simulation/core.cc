@@ -1,11 +1,10 @@
 // Simulation: the parameters of a run, the run itself and its time loop.
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/fe/fe_dgp.h>
-#include <deal.II/fe/fe_q.h>
 
 #include <fdparticle/core/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/introspection.h>
 
 #include <chrono>
 #include <cmath>
@@ -76,7 +75,7 @@ namespace fdparticle
     , triangulation(comm,
                     typename Triangulation<dim>::MeshSmoothing(
                       Triangulation<dim>::limit_level_difference_at_vertices))
-    , fe(FE_Q<dim>(2), dim, FE_Q<dim>(2), dim, FE_DGP<dim>(1), 1)
+    , fe(Introspection<dim>::finite_element())
     , dof_handler(triangulation)
     , assembler(fe, fluid, particles, quadrature)
   {

@@ -5,6 +5,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/introspection.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,16 +28,15 @@ namespace fdparticle
     // One pass over the cells for both field statistics of a step:
     //  - RMS over Ω of p − p_static minus its mean (zero for a fluid at hydrostatic rest);
     //  - (1/|Ω|) ∫_Ω u, the superficial velocity of the periodic-array problems.
-    const FEValuesExtractors::Scalar pressure(2 * dim);
-    const FEValuesExtractors::Vector velocities(0);
-    QGauss<dim>                      q(3);
+    const FEValuesExtractors::Scalar pressure = Introspection<dim>::pressure();
+    const FEValuesExtractors::Vector velocities = Introspection<dim>::velocities();
+    const QGauss<dim>                q = Introspection<dim>::cell_quadrature();
     FEValues<dim> fv(assembler.get_mapping(), fe, q,
                      update_values | update_quadrature_points | update_JxW_values);
     std::vector<double>         p(q.size());
     std::vector<Tensor<1, dim>> u(q.size());
     // ∫ e, ∫ e², |Ω|, ∫ u_d.
     double               sums[3 + dim] = {};
-    const Tensor<1, dim> grad = fluid.hydrostatic_gradient();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -45,7 +45,8 @@ namespace fdparticle
           fv[velocities].get_function_values(solution_ghost, u);
           for (unsigned int qp = 0; qp < q.size(); ++qp)
             {
-              const double e = p[qp] - grad * (fv.quadrature_point(qp) - pressure_reference_point);
+              const double e =
+                p[qp] - fluid.hydrostatic_pressure(fv.quadrature_point(qp), pressure_reference_point);
               sums[0] += e * fv.JxW(qp);
               sums[1] += e * e * fv.JxW(qp);
               sums[2] += fv.JxW(qp);

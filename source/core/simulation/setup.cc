@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/introspection.h>
 
 #include <iomanip>
 #include <limits>
@@ -48,7 +49,8 @@ namespace fdparticle
     dof_handler.distribute_dofs(fe);
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
-    velocity_dofs = DoFTools::extract_dofs(dof_handler, fe.component_mask(FEValuesExtractors::Vector(0)));
+    velocity_dofs =
+      DoFTools::extract_dofs(dof_handler, fe.component_mask(Introspection<dim>::velocities()));
     // λ DoFs of owned and ghost cells: the constraints need them on every rank that sees them.
     multiplier_dofs.clear();
     multiplier_dofs.set_size(dof_handler.n_dofs());
@@ -60,8 +62,8 @@ namespace fdparticle
             cell->get_dof_indices(dofs);
             for (unsigned int i = 0; i < dofs.size(); ++i)
               {
-                const unsigned int c = fe.system_to_component_index(i).first;
-                if (c >= dim && c < 2 * dim)
+                if (Introspection<dim>::field(fe.system_to_component_index(i).first) ==
+                    Introspection<dim>::Field::multiplier)
                   multiplier_dofs.add_index(dofs[i]);
               }
           }
@@ -83,7 +85,7 @@ namespace fdparticle
 
     // The pressure level is fixed by the mean pressure of the cell at the lower corner
     // (the seed's "centre node of the first element"): no wall fixes it.
-    const unsigned int p_local = fe.component_to_system_index(2 * dim, 0);
+    const unsigned int p_local = fe.component_to_system_index(Introspection<dim>::pressure_component, 0);
     double             best = std::numeric_limits<double>::max();
     types::global_dof_index best_dof = 0;
     Point<dim>              best_center;
@@ -147,8 +149,7 @@ namespace fdparticle
   void Simulation<dim>::make_constraints()
   {
     TimerOutput::Scope t(*timer, "constraints");
-    const FEValuesExtractors::Vector velocities(0);
-    const ComponentMask              u_mask = fe.component_mask(velocities);
+    const ComponentMask u_mask = fe.component_mask(Introspection<dim>::velocities());
     const auto support = assembler.particle_support(dof_handler, relevant_dofs, static_constraints);
 
     for (const bool homogeneous : {true, false})
@@ -183,14 +184,18 @@ namespace fdparticle
     // from the particles. Couplings of (F1)–(F3), doc/method.md §3: u with everything, λ_i with u_i and λ_i
     // (rigidity, fluid penalty), λ_i with λ_j (strain penalty), p with u; p with p only for the diagonal of the
     // constrained pressure-level DoF (cell-local, so cheap).
-    Table<2, DoFTools::Coupling> coupling(2 * dim + 1, 2 * dim + 1);
-    for (unsigned int i = 0; i < 2 * dim + 1; ++i)
-      for (unsigned int j = 0; j < 2 * dim + 1; ++j)
+    using Field = typename Introspection<dim>::Field;
+    constexpr unsigned int       n_components = Introspection<dim>::n_components;
+    Table<2, DoFTools::Coupling> coupling(n_components, n_components);
+    for (unsigned int i = 0; i < n_components; ++i)
+      for (unsigned int j = 0; j < n_components; ++j)
         {
-          const bool u_i = i < dim, u_j = j < dim, p_i = i == 2 * dim, p_j = j == 2 * dim;
-          const bool same = (i % dim == j % dim) && !p_i && !p_j;
+          const Field f_i = Introspection<dim>::field(i), f_j = Introspection<dim>::field(j);
+          const bool  u_i = f_i == Field::velocity, u_j = f_j == Field::velocity;
+          const bool  p_i = f_i == Field::pressure, p_j = f_j == Field::pressure;
+          const bool  same = (i % dim == j % dim) && !p_i && !p_j;
           // The strain penalty couples the components of λ with each other.
-          const bool l_l = !u_i && !u_j && !p_i && !p_j;
+          const bool l_l = f_i == Field::multiplier && f_j == Field::multiplier;
           coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || (p_i && p_j) || same || l_l) ?
                              DoFTools::always :
                              DoFTools::none;
@@ -216,19 +221,17 @@ namespace fdparticle
       return;
     // Local L2 projection: p is discontinuous, so each cell is independent, and the linear
     // hydrostatic field is reproduced exactly.
-    const FEValuesExtractors::Scalar pressure(2 * dim);
-    QGauss<dim>                      q(3);
+    const QGauss<dim> q = Introspection<dim>::cell_quadrature();
     FEValues<dim> fv(assembler.get_mapping(), fe, q,
                      update_values | update_quadrature_points | update_JxW_values);
     std::vector<unsigned int> p_dofs;
     for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-      if (fe.system_to_component_index(i).first == 2 * dim)
+      if (fe.system_to_component_index(i).first == Introspection<dim>::pressure_component)
         p_dofs.push_back(i);
     const unsigned int                   np = p_dofs.size();
     FullMatrix<double>                   M(np, np);
     Vector<double>                       b(np), x(np);
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    const Tensor<1, dim>                 grad = fluid.hydrostatic_gradient();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -237,7 +240,8 @@ namespace fdparticle
           b = 0;
           for (unsigned int qp = 0; qp < q.size(); ++qp)
             {
-              const double ps = grad * (fv.quadrature_point(qp) - pressure_reference_point);
+              const double ps =
+                fluid.hydrostatic_pressure(fv.quadrature_point(qp), pressure_reference_point);
               for (unsigned int i = 0; i < np; ++i)
                 {
                   b(i) += ps * fv.shape_value(p_dofs[i], qp) * fv.JxW(qp);

@@ -140,10 +140,9 @@ namespace fdparticle
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         Particle<dim> &P = particles[k];
-        const Tensor<1, dim> dVdt = c[0] * P.velocity + c[1] * P.velocity_old + c[2] * P.velocity_old2;
-        const Tensor<1, 3>   dwdt = c[0] * P.omega + c[1] * P.omega_old + c[2] * P.omega_old2;
-        P.force = fluid.density * P.volume() * (dVdt - fluid.gravity) - integrals[k].lambda_force;
-        P.torque = fluid.density * P.inertia() * dwdt - integrals[k].lambda_torque;
+        P.force = fluid.density * P.volume() * (P.acceleration(c) - fluid.gravity) -
+                  integrals[k].lambda_force;
+        P.torque = fluid.density * P.inertia() * P.angular_acceleration(c) - integrals[k].lambda_torque;
         if (dim == 2)
           P.torque[0] = P.torque[1] = 0;
       }

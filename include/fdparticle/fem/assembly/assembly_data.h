@@ -1,0 +1,114 @@
+#ifndef fdparticle_fem_assembly_assembly_data_h
+#define fdparticle_fem_assembly_assembly_data_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <fdparticle/fem/assembly/particle_integrals.h>
+#include <fdparticle/fem/cut_cell_quadrature.h>
+#include <fdparticle/fem/introspection.h>
+
+#include <array>
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * What every assembly term reads at one quadrature point (doc/method.md §3): the step's
+   * constants, the cell's kind, the shape functions and the current iterate there.
+   * NavierStokesAssembler fills it cell by cell and point by point; the terms only read it.
+   */
+  template <int dim>
+  struct AssemblyScratch
+  {
+    AssemblyScratch(const FESystem<dim> &fe, const std::array<double, 3> &c, const double alpha,
+                    const bool with_matrix)
+      : c(c)
+      , alpha(alpha)
+      , with_matrix(with_matrix)
+      , component(fe.n_dofs_per_cell())
+      , N(fe.n_dofs_per_cell())
+      , dN(fe.n_dofs_per_cell())
+    {
+      // Every shape function is primitive: one field, one vector component.
+      for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+        {
+          const unsigned int c_i = fe.system_to_component_index(i).first;
+          component[i] = c_i % dim;
+          switch (Introspection<dim>::field(c_i))
+            {
+              case Introspection<dim>::Field::velocity:
+                velocity_dofs.push_back(i);
+                break;
+              case Introspection<dim>::Field::multiplier:
+                multiplier_dofs.push_back(i);
+                break;
+              case Introspection<dim>::Field::pressure:
+                pressure_dofs.push_back(i);
+                break;
+            }
+        }
+    }
+
+    // The step.
+    std::array<double, 3> c;           ///< BDF weights: ∂_t u ≈ c0 u + c1 u^n + c2 u^{n−1}
+    double                alpha;       ///< α of the pairing <λ, v> (doc/method.md §0)
+    bool                  with_matrix; ///< assemble the Jacobian as well as the residual
+
+    // The local DoFs by field, and the vector component (0..dim−1) of each.
+    std::vector<unsigned int> component;
+    std::vector<unsigned int> velocity_dofs, multiplier_dofs, pressure_dofs;
+
+    // The cell.
+    CellKind                kind = CellKind::fluid;
+    const std::vector<int> *owner = nullptr; ///< particle of each point, −1: fluid
+    int                     cut_particle = -1; ///< the particle whose surface cuts the cell
+    double                  particle_fraction = 0; ///< of a cut cell: its weights inside
+    bool                    has_particle = false;  ///< some point of the cell is in a particle
+    // The iterate at the cell's points (λ only where a particle or a cut needs it).
+    std::vector<Tensor<1, dim>> u, u_history, lambda;
+    std::vector<Tensor<2, dim>> grad_u, grad_lambda;
+    std::vector<double>         p;
+
+    // The point.
+    unsigned int                q = 0;
+    double                      JxW = 0;
+    Point<dim>                  x;
+    int                         particle = -1; ///< owner of the point, −1: fluid
+    std::vector<double>         N;             ///< shape values at the point
+    std::vector<Tensor<1, dim>> dN;            ///< shape gradients at the point
+  };
+
+  /**
+   * What the terms add to: the cell's residual and Jacobian, the particle coupling of the
+   * free particles the cell meets (the cell's part of the border columns B and rows C of
+   * the Newton system, doc/method.md §5) and the particle integrals of this rank.
+   */
+  template <int dim>
+  struct AssemblyCopy
+  {
+    AssemblyCopy(const unsigned int dofs_per_cell, const unsigned int n_particles)
+      : matrix(dofs_per_cell, dofs_per_cell)
+      , rhs(dofs_per_cell)
+      , border_B(n_particles)
+      , border_C(n_particles)
+      , integrals(n_particles)
+    {}
+
+    FullMatrix<double> matrix;
+    Vector<double>     rhs;
+    /// [particle][unknown] → local vector; sized only for the free particles in touching.
+    std::vector<std::vector<Vector<double>>> border_B, border_C;
+    /// The particles owning points of the cell, each once.
+    std::vector<int> touching;
+    /// Summed over all cells of this rank (not reset per cell).
+    std::vector<ParticleIntegrals<dim>> integrals;
+  };
+} // namespace fdparticle
+
+#endif

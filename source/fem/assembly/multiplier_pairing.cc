@@ -1,0 +1,90 @@
+#include <fdparticle/fem/assembly/multiplier_pairing.h>
+#include <fdparticle/particles/rigid_body.h>
+
+namespace fdparticle
+{
+  template <int dim>
+  void MultiplierPairing<dim>::assemble_point(const AssemblyScratch<dim> &s,
+                                              AssemblyCopy<dim> &         copy) const
+  {
+    const int k = s.particle;
+    if (k < 0)
+      return;
+    using RB = RigidBody<dim>;
+    const double                     mu = fluid.viscosity, alpha = s.alpha, JxW = s.JxW;
+    const auto &                     N = s.N;
+    const auto &                     dN = s.dN;
+    const std::vector<unsigned int> &comp = s.component;
+    const Tensor<1, dim> &           l = s.lambda[s.q];
+    const Tensor<2, dim> &           gl = s.grad_lambda[s.q];
+    const Tensor<2, dim> &           gu = s.grad_u[s.q];
+
+    // Residual: the rigidity (F3) in P_k, and the −<λ, v> term of the momentum equation.
+    const Particle<dim> &P = particles[k];
+    const Tensor<1, dim> r = s.x - P.geometry_center;
+    const Tensor<1, dim> du = s.u[s.q] - P.velocity - RB::cross(P.omega, r);
+    const Tensor<2, dim> dgu = gu - RB::rotation_gradient(P.omega);
+    for (const unsigned int i : s.velocity_dofs)
+      copy.rhs(i) -= (alpha * l[comp[i]] * N[i] + mu * (gl[comp[i]] * dN[i])) * JxW;
+    for (const unsigned int a : s.multiplier_dofs)
+      copy.rhs(a) += (alpha * du[comp[a]] * N[a] + mu * (dgu[comp[a]] * dN[a])) * JxW;
+
+    // The integrals of (F4)–(F5) and of the reported force and torque.
+    ParticleIntegrals<dim> &I = copy.integrals[k];
+    I.lambda_force += alpha * l * JxW;
+    for (unsigned int j = 0; j < 3; ++j)
+      {
+        Tensor<1, 3> e;
+        e[j] = 1;
+        I.lambda_torque[j] +=
+          (alpha * (l * RB::cross(e, r)) + mu * scalar_product(gl, RB::rotation_gradient(e))) * JxW;
+      }
+    I.curl_u += RB::curl(gu) * JxW;
+    I.volume += JxW;
+
+    if (!s.with_matrix)
+      return;
+    // Jacobian: the pairing between λ and u, antisymmetric in sign.
+    for (const unsigned int a : s.multiplier_dofs)
+      for (const unsigned int b : s.velocity_dofs)
+        if (comp[a] == comp[b])
+          {
+            const double m = (alpha * N[a] * N[b] + mu * (dN[a] * dN[b])) * JxW;
+            copy.matrix(a, b) += m;
+            copy.matrix(b, a) -= m;
+          }
+    if (P.first_unknown == numbers::invalid_unsigned_int)
+      return;
+    // Border: ∂(rigidity)/∂(V, ω) and ∂(particle rows)/∂(λ or u).
+    const unsigned int n_rot = RB::n_rotations;
+    auto &             B = copy.border_B[k];
+    auto &             C = copy.border_C[k];
+    for (const unsigned int a : s.multiplier_dofs)
+      {
+        const unsigned int ca = comp[a];
+        B[ca](a) -= alpha * N[a] * JxW;
+        C[ca](a) += alpha * N[a] * JxW;
+        for (unsigned int j = 0; j < n_rot; ++j)
+          {
+            const Tensor<1, 3> e = RB::rotation_axis(j);
+            const double       pairing =
+              (alpha * N[a] * RB::cross(e, r)[ca] + mu * (RB::rotation_gradient(e)[ca] * dN[a])) * JxW;
+            B[dim + j](a) -= pairing;
+            if (particles.closure() == AngularVelocityClosure::torque_balance)
+              C[dim + j](a) += pairing;
+          }
+      }
+    if (particles.closure() == AngularVelocityClosure::kinematic)
+      for (const unsigned int b : s.velocity_dofs)
+        {
+          Tensor<2, dim> G;
+          G[comp[b]] = dN[b];
+          const Tensor<1, 3> curl = RB::curl(G);
+          for (unsigned int j = 0; j < n_rot; ++j)
+            C[dim + j](b) -= 0.5 * (curl * RB::rotation_axis(j)) * JxW;
+        }
+  }
+
+  template class MultiplierPairing<2>;
+  template class MultiplierPairing<3>;
+} // namespace fdparticle

@@ -1,0 +1,51 @@
+#include <fdparticle/fem/assembly/particle_equations.h>
+#include <fdparticle/particles/rigid_body.h>
+
+namespace fdparticle
+{
+  template <int dim>
+  void ParticleEquations<dim>::assemble(const std::vector<ParticleIntegrals<dim>> &integrals,
+                                        const std::array<double, 3> &c, const bool with_matrix,
+                                        NewtonSystem &system) const
+  {
+    using RB = RigidBody<dim>;
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &P = particles[k];
+        if (P.first_unknown == numbers::invalid_unsigned_int)
+          continue;
+        const unsigned int   f = P.first_unknown;
+        const double         drho = P.density - fluid.density;
+        const Tensor<1, dim> dVdt = P.acceleration(c);
+        const Tensor<1, 3>   dwdt = P.angular_acceleration(c);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            system.r_p[f + d] =
+              drho * P.volume() * (dVdt[d] - fluid.gravity[d]) + integrals[k].lambda_force[d];
+            if (with_matrix)
+              system.D(f + d, f + d) = drho * P.volume() * c[0];
+          }
+        for (unsigned int j = 0; j < RB::n_rotations; ++j)
+          {
+            const Tensor<1, 3> e = RB::rotation_axis(j);
+            if (particles.closure() == AngularVelocityClosure::torque_balance)
+              {
+                system.r_p[f + dim + j] =
+                  drho * P.inertia() * (dwdt * e) + integrals[k].lambda_torque * e;
+                if (with_matrix)
+                  system.D(f + dim + j, f + dim + j) = drho * P.inertia() * c[0];
+              }
+            else
+              {
+                system.r_p[f + dim + j] =
+                  integrals[k].volume * (P.omega * e) - 0.5 * (integrals[k].curl_u * e);
+                if (with_matrix)
+                  system.D(f + dim + j, f + dim + j) = integrals[k].volume;
+              }
+          }
+      }
+  }
+
+  template class ParticleEquations<2>;
+  template class ParticleEquations<3>;
+} // namespace fdparticle
