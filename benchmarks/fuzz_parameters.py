@@ -89,14 +89,16 @@ class Scene:
         """[(line index, path tuple, name, value)] in file order."""
         found, path = [], []
         for i, raw in enumerate(self.lines):
+            # Any white space separates the keywords, as in ParameterHandler.
             line = raw.split("#")[0].strip()
-            if line.startswith("subsection "):
-                path.append(line[len("subsection "):].strip())
+            words = line.split(None, 1)
+            if len(words) == 2 and words[0] == "subsection":
+                path.append(words[1].strip())
             elif line == "end":
                 if path:
                     path.pop()
-            elif line.startswith("set ") and "=" in line:
-                name, value = line[4:].split("=", 1)
+            elif len(words) == 2 and words[0] == "set" and "=" in words[1]:
+                name, value = words[1].split("=", 1)
                 found.append((i, tuple(path), " ".join(name.split()), value.strip()))
         return found
 

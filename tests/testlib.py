@@ -28,14 +28,16 @@ def prm_entries(text):
     entry wins, as in deal.II's ParameterHandler."""
     values, path = {}, []
     for line in text.splitlines():
+        # Any white space separates the keywords, as in ParameterHandler.
         line = line.split("#")[0].strip()
-        if line.startswith("subsection "):
-            path.append(line[len("subsection "):].strip())
+        words = line.split(None, 1)
+        if len(words) == 2 and words[0] == "subsection":
+            path.append(words[1].strip())
         elif line == "end":
             path.pop()
-        elif line.startswith("set "):
-            name, value = line[4:].split("=", 1)
-            values["/".join(path + [name.strip()])] = value.strip()
+        elif len(words) == 2 and words[0] == "set":
+            name, value = words[1].split("=", 1)
+            values["/".join(path + [" ".join(name.split())])] = value.strip()
     return values
 
 

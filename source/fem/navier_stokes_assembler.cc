@@ -128,7 +128,6 @@ namespace fdparticle
         // The cell: its kind and the iterate at its points.
         const unsigned int nq = fv.n_quadrature_points;
         s.kind = rule.kind;
-        s.owner = &rule.owner;
         s.cut_particle = rule.particle;
         s.has_particle = std::any_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; });
         s.particle_fraction = (rule.kind == CellKind::cut ? particle_fraction_of(fv, rule) : 0.0);

@@ -111,7 +111,6 @@ namespace
       AssemblyScratch<dim> s(fe, c, alpha, with_matrix);
       AssemblyCopy<dim>    copy(n, particles.size());
       s.kind = kind;
-      s.owner = &owner;
       s.cut_particle = 0;
       s.has_particle = std::any_of(owner.begin(), owner.end(), [](int k) { return k >= 0; });
       double inside = 0, total = 0;

@@ -66,7 +66,6 @@ namespace fdparticle
 
     // The cell.
     CellKind                kind = CellKind::fluid;
-    const std::vector<int> *owner = nullptr; ///< particle of each point, −1: fluid
     int                     cut_particle = -1; ///< the particle whose surface cuts the cell
     double                  particle_fraction = 0; ///< of a cut cell: its weights inside
     bool                    has_particle = false;  ///< some point of the cell is in a particle
