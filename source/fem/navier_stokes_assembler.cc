@@ -129,7 +129,7 @@ namespace fdparticle
         const unsigned int nq = fv.n_quadrature_points;
         s.kind = rule.kind;
         s.cut_particle = rule.particle;
-        s.has_particle = std::any_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; });
+        s.has_particle = rule.has_particle_point();
         s.particle_fraction = (rule.kind == CellKind::cut ? particle_fraction_of(fv, rule) : 0.0);
         s.u.resize(nq), s.u_history.resize(nq), s.grad_u.resize(nq), s.p.resize(nq);
         fv[velocities].get_function_values(solution, s.u);
@@ -240,7 +240,7 @@ namespace fdparticle
             FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
             fv.reinit(cell);
             quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
-            if (std::none_of(rule.owner.begin(), rule.owner.end(), [](int k) { return k >= 0; }))
+            if (!rule.has_particle_point())
               continue;
           }
         cell->get_dof_indices(dof_indices);
@@ -256,14 +256,10 @@ namespace fdparticle
           }
       }
     // Masters may lie outside the locally relevant DoFs: they are ghosts of the marker.
+    std::sort(marked.begin(), marked.end());
+    marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
     IndexSet ghosts = locally_relevant;
-    {
-      IndexSet masters(dof_handler.n_dofs());
-      std::sort(marked.begin(), marked.end());
-      marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
-      masters.add_indices(marked.begin(), marked.end());
-      ghosts.add_indices(masters);
-    }
+    ghosts.add_indices(marked.begin(), marked.end());
     LinearAlgebra::distributed::Vector<double> marker(dof_handler.locally_owned_dofs(), ghosts,
                                                       dof_handler.get_communicator());
     for (const auto i : marked)

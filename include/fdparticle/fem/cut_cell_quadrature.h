@@ -10,6 +10,7 @@
 #include <fdparticle/fem/introspection.h>
 #include <fdparticle/particles/particle_set.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -47,6 +48,12 @@ namespace fdparticle
       /// A rule made for this cell alone (level set); quadrature then points here.
       Quadrature<dim>         cell_specific;
       bool                    owners_known = false;
+
+      /// Whether some point of the rule lies in a particle (after assign_owners).
+      bool has_particle_point() const
+      {
+        return std::any_of(owner.begin(), owner.end(), [](int k) { return k >= 0; });
+      }
     };
 
     /// How cut cells are integrated.
