@@ -284,7 +284,7 @@ subsection Initial conditions
   set Pressure = {rng.choice(['zero', 'hydrostatic'])}
 end
 subsection Solver
-  set Linear solver = {solver}
+  set Direct solver = {solver}
   set MUMPS ordering = {ordering}
   set Reuse Jacobian = {rng.choice(['true', 'false'])}
 end

@@ -14,6 +14,10 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    (@TESTS@ in ARGS and in the prm: the tests/ directory)
   # test-compare: FILE [FILE ...]  compare output files with tests/NAME/FILE (CSV, numeric,
   # test-tolerance: REL ABS        |a-b| <= ABS + REL*|b|; wall_seconds is never compared)
+  # test-solvers: REL ABS [N]      also run the scene with the other Solver/Linear solver
+                                   (iterative for a direct scene, direct for an iterative
+                                   one), on each number of ranks (or on N ranks only):
+                                   particles.csv must agree, |a-b| <= ABS + REL*|b|
   # test-check: SCRIPT [ARGS]      run tests/SCRIPT OUTPUT_DIR [ARGS]; it exits non-zero on failure
   # test-restart-at: T             also run to End time T with checkpoints, then resume
                                    (Checkpointing/Resume = true) to the End time of the
@@ -248,6 +252,26 @@ def check_restart(opts, text, d, ranks, full_dir):
     return problems
 
 
+def check_other_solver(opts, text, d, name, ranks, first_dir):
+    """Run the scene with the other linear solver; mismatches of particles.csv."""
+    entries = testlib.prm_entries(text)
+    other = "direct" if entries.get("Solver/Linear solver") == "iterative" else "iterative"
+    o_dir = first_dir + f"-{other}"
+    o_prm = os.path.join(opts.work, f"{name}-ranks-{ranks}-{other}.prm")
+    with open(o_prm, "w") as f:
+        f.write(text + f"\nsubsection Solver\n  set Linear solver = {other}\nend\n"
+                f"subsection Output\n  set Directory = {o_dir}\nend\n")
+    result = run(opts.executable, [o_prm], ranks, opts.work)
+    sys.stdout.write(result.stdout[-2000:])
+    sys.stderr.write(result.stderr[-2000:])
+    if result.returncode != 0:
+        return [f"the run with the {other} solver exited with {result.returncode}"]
+    rel, abs_tol = (float(x) for x in d["test-solvers"].split()[:2])
+    return [f"{other} solver: {p}" for p in
+            compare_csv(os.path.join(o_dir, "particles.csv"),
+                        os.path.join(first_dir, "particles.csv"), rel, abs_tol)]
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--executable", required=True)
@@ -325,6 +349,9 @@ def main():
                     failures.append(f"the run mirrored in {axis} exited with {result.returncode}")
                     continue
                 failures += compare_mirrored(out_dir, m_dir, axis, lo, hi, radius, tol)
+        solver_ranks = d.get("test-solvers", "").split()[2:]
+        if "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks):
+            failures += check_other_solver(opts, text, d, name, ranks, out_dir)
         if "test-check" in d:
             script, *check_args = d["test-check"].split()
             script = os.path.join(HERE, script)

@@ -1,6 +1,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_vector.h>
 
 #include <fdparticle/fem/introspection.h>
 #include <fdparticle/fem/navier_stokes_assembler.h>
@@ -116,6 +116,24 @@ namespace fdparticle
     typename CutCellQuadrature<dim>::CellRule rule;
 
     system.zero(with_matrix);
+    // The pressure mass over each cell and its fluid part, for the iterative solver's
+    // pressure Schur complement (NewtonSystem::Blocks, doc/method.md §8).
+    NewtonSystem::Blocks &blocks         = system.blocks;
+    const unsigned int    n_p            = blocks.pressure_dofs_per_cell;
+    const bool            fluid_mass     = with_matrix && n_p > 0;
+    std::vector<unsigned int> pressure_local;
+    types::global_dof_index   first_pressure = 0; // this rank's first pressure DoF
+    if (fluid_mass)
+      {
+        for (unsigned int i = 0; i < n; ++i)
+          if (fe.system_to_component_index(i).first == Introspection<dim>::pressure_component)
+            pressure_local.push_back(i);
+        const auto &range = blocks.range[Utilities::MPI::this_mpi_process(
+          dof_handler.get_communicator())];
+        first_pressure = range[2];
+        blocks.pressure_fluid_mass.assign((range[3] - range[2]) * n_p, 0.0);
+        blocks.pressure_mass.assign((range[3] - range[2]) * n_p, 0.0);
+      }
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -175,6 +193,27 @@ namespace fdparticle
           }
 
         cell->get_dof_indices(dof_indices);
+        if (fluid_mass)
+          {
+            const auto first = dof_indices[pressure_local[0]] - first_pressure;
+            Assert(first % n_p == 0, ExcInternalError());
+            double *fluid_part = &blocks.pressure_fluid_mass[first * n_p];
+            double *whole      = &blocks.pressure_mass[first * n_p];
+            for (unsigned int q = 0; q < nq; ++q)
+              for (unsigned int a = 0; a < n_p; ++a)
+                {
+                  Assert(dof_indices[pressure_local[a]] == dof_indices[pressure_local[0]] + a,
+                         ExcInternalError());
+                  for (unsigned int b = 0; b < n_p; ++b)
+                    {
+                      const double m = fv.shape_value(pressure_local[a], q) *
+                                       fv.shape_value(pressure_local[b], q) * fv.JxW(q);
+                      whole[a * n_p + b] += m;
+                      if (rule.owner[q] < 0)
+                        fluid_part[a * n_p + b] += m;
+                    }
+                }
+          }
         if (with_matrix)
           {
             constraints.distribute_local_to_global(copy.matrix, copy.rhs, dof_indices, system.A,
@@ -260,12 +299,16 @@ namespace fdparticle
     marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
     IndexSet ghosts = locally_relevant;
     ghosts.add_indices(marked.begin(), marked.end());
-    LinearAlgebra::distributed::Vector<double> marker(dof_handler.locally_owned_dofs(), ghosts,
-                                                      dof_handler.get_communicator());
-    for (const auto i : marked)
-      marker[i] = 1;
-    marker.compress(VectorOperation::max);
-    marker.update_ghost_values();
+    // Trilinos vectors: the owned DoFs are not one contiguous range (numbered by blocks).
+    const MPI_Comm                comm = dof_handler.get_communicator();
+    TrilinosWrappers::MPI::Vector marks;
+    marks.reinit(dof_handler.locally_owned_dofs(), ghosts, comm, /*vector_writable=*/true);
+    // Added, not set: compress must be the same operation on every rank, also on one
+    // that marked nothing.
+    marks.add(marked, std::vector<double>(marked.size(), 1.0));
+    marks.compress(VectorOperation::add);
+    TrilinosWrappers::MPI::Vector marker(dof_handler.locally_owned_dofs(), ghosts, comm);
+    marker = marks;
     ParticleSupport support;
     support.active_multipliers.set_size(dof_handler.n_dofs());
     for (const auto i : locally_relevant)

@@ -61,6 +61,7 @@ namespace fdparticle
               {"cells", double(s.cells)},
               {"dofs", double(s.dofs)},
               {"nonlinear_iterations", double(s.nonlinear_iterations)},
+              {"linear_iterations", double(s.linear_iterations)},
               {"residual", s.residual},
               {"wall_seconds", s.wall_seconds},
               {"initial_residual", s.initial_residual},

@@ -160,10 +160,10 @@ namespace fdparticle
   {
     prm.enter_subsection("Solver");
     {
-      prm.declare_entry("Linear solver", "Amesos_Mumps",
+      prm.declare_entry("Direct solver", "Amesos_Mumps",
                         Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
-                        "Direct solver for the finite-element block: MUMPS (parallel) or KLU "
-                        "(serial, gathers the matrix on one rank).");
+                        "Direct solver: the factorization of the finite-element block, MUMPS "
+                        "(parallel) or KLU (serial, gathers the matrix on one rank).");
       prm.declare_entry("MUMPS ordering", "metis",
                         Patterns::Selection("metis|auto|amd|amf|qamd|pord"),
                         "Fill-reducing ordering for MUMPS (ICNTL(7)). 'metis': METIS nested "
@@ -183,7 +183,7 @@ namespace fdparticle
   void DirectSolver::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Solver");
-    solver_type    = prm.get("Linear solver");
+    solver_type    = prm.get("Direct solver");
     mumps_ordering = prm.get("MUMPS ordering");
     verbose        = prm.get_bool("Direct solver statistics");
     prm.leave_subsection();

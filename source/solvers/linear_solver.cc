@@ -1,17 +1,47 @@
 #include <fdparticle/solvers/direct_solver.h>
+#include <fdparticle/solvers/iterative_solver.h>
 #include <fdparticle/solvers/linear_solver.h>
 
 namespace fdparticle
 {
-  // One implementation so far: 'Solver/Linear solver' chooses among the direct solvers it
-  // offers. A new implementation adds its names to that selection and its branch here.
   void LinearSolver::declare_parameters(ParameterHandler &prm)
   {
+    prm.enter_subsection("Solver");
+    {
+      prm.declare_entry("Linear solver", "direct", Patterns::Selection("direct|iterative|auto"),
+                        "How the Newton system is solved (doc/method.md §8). 'direct': sparse "
+                        "factorization (Direct solver) and the particle unknowns by their "
+                        "Schur complement; exact, time and memory growing faster than the "
+                        "unknowns. 'iterative': FGMRES with a block preconditioner; memory "
+                        "linear in the unknowns, to the Newton tolerance (inexact Newton). 'auto': iterative when the first mesh "
+                        "has more than 'Iterative solver from' unknowns (estimated from the "
+                        "number of cells), else direct.");
+      prm.declare_entry("Iterative solver from", "500000", Patterns::Double(0),
+                        "Linear solver = auto: the problem size (unknowns) from which the "
+                        "iterative solver is used. The default is where the direct solver "
+                        "needs more than a 24 GB machine in 3D; below it the direct solver is "
+                        "faster on every scene measured so far (doc/scaling.md).");
+    }
+    prm.leave_subsection();
     DirectSolver::declare_parameters(prm);
+    IterativeSolver::declare_parameters(prm);
   }
 
-  std::unique_ptr<LinearSolver> LinearSolver::create(ParameterHandler &prm)
+  std::unique_ptr<LinearSolver> LinearSolver::create(ParameterHandler &prm,
+                                                     const double      estimated_unknowns)
   {
+    prm.enter_subsection("Solver");
+    std::string choice = prm.get("Linear solver");
+    const double threshold = prm.get_double("Iterative solver from");
+    prm.leave_subsection();
+    if (choice == "auto")
+      choice = estimated_unknowns >= threshold ? "iterative" : "direct";
+    if (choice == "iterative")
+      {
+        auto iterative = std::make_unique<IterativeSolver>();
+        iterative->parse_parameters(prm);
+        return iterative;
+      }
     auto direct = std::make_unique<DirectSolver>();
     direct->parse_parameters(prm);
     return direct;

@@ -54,6 +54,7 @@ namespace fdparticle
     const double target = tolerance * std::max(1.0, std::isfinite(residual) ? residual : 1.0);
     // Written so that a NaN residual enters the loop (NaN <= target is false) and is
     // caught there.
+    double previous = residual, forcing = max_forcing;
     while (!(residual <= target))
       {
         result.residual = residual;
@@ -70,9 +71,23 @@ namespace fdparticle
                         format_short(result.initial_residual) +
                         (problem.describe_residual ? "; " + problem.describe_residual() : "") +
                         ")");
+        // Inexact Newton (doc/method.md §5; Eisenstat & Walker 1996, choice 2): the
+        // linear solve reduces its residual by the forcing term, which tightens as Newton
+        // converges, and never further than the target needs.
+        if (result.iterations > 0)
+          {
+            const double safeguard = forcing_gamma * forcing * forcing;
+            forcing = forcing_gamma * (residual / previous) * (residual / previous);
+            if (safeguard > forcing_safeguard_threshold)
+              forcing = std::max(forcing, safeguard);
+          }
+        forcing = std::min(max_forcing, forcing);
+        if (problem.linear)
+          forcing = 0;
+        forcing = std::max(forcing, target_margin * target / residual);
         try
           {
-            problem.solve();
+            result.linear_iterations += problem.solve(forcing);
           }
         catch (const std::exception &e)
           {
@@ -98,8 +113,8 @@ namespace fdparticle
               break;
             theta *= 0.5;
           }
-        const double previous = residual;
-        residual              = trial;
+        previous = residual;
+        residual = trial;
         if (residual > target && (!reuse_jacobian || residual > jacobian_reuse_reduction * previous))
           residual = problem.assemble(true);
       }

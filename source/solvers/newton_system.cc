@@ -9,6 +9,26 @@
 
 namespace fdparticle
 {
+  std::pair<unsigned int, types::global_dof_index>
+  NewtonSystem::Blocks::locate(const types::global_dof_index g) const
+  {
+    // The last rank whose range starts at or before g (ranks may own nothing).
+    auto it = std::upper_bound(range.begin(), range.end(), g,
+                               [](const types::global_dof_index x, const auto &r) { return x < r[0]; });
+    Assert(it != range.begin(), ExcInternalError());
+    const std::size_t r = (it - range.begin()) - 1;
+    unsigned int      b = 0;
+    while (b < 2 && g >= range[r][b + 1])
+      ++b;
+    return {b, offset[r][b] + (g - range[r][b])};
+  }
+
+  types::global_dof_index NewtonSystem::Blocks::size(const unsigned int b) const
+  {
+    const std::size_t last = range.size() - 1;
+    return offset[last][b] + (range[last][b + 1] - range[last][b]);
+  }
+
   bool NewtonSystem::has_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const
   {
     if (A.m() == 0)

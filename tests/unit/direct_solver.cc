@@ -151,11 +151,12 @@ namespace
     ParameterHandler prm;
     LinearSolver::declare_parameters(prm);
     prm.parse_input_from_string("subsection Solver\n"
-                                "  set Linear solver = " + solver_name + "\n"
+                                "  set Linear solver = direct\n"
+                                "  set Direct solver = " + solver_name + "\n"
                                 "  set MUMPS ordering = " + ordering + "\n"
                                 "end\n");
     NewtonSystem s; // declared first: the solver refers to its matrix until destroyed
-    const std::unique_ptr<LinearSolver> created = LinearSolver::create(prm);
+    const std::unique_ptr<LinearSolver> created = LinearSolver::create(prm, n + m);
     auto *solver = dynamic_cast<DirectSolver *>(created.get());
     check(solver != nullptr, what + ": 'Linear solver' selects the direct solver");
     if (!solver)

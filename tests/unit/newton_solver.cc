@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <vector>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -38,6 +39,8 @@ namespace
     Eigen::VectorXd x, x0, dx, residual;
     Eigen::MatrixXd jacobian;
     unsigned int    n_jacobians = 0, n_residuals = 0;
+    /// The relative tolerance each linear solve was given.
+    std::vector<double> tolerances;
     bool            solve_throws = false;
 
     NewtonSolver::Problem callbacks(const bool linear = false)
@@ -53,11 +56,13 @@ namespace
           }
         return residual.norm();
       };
-      p.solve = [this]() {
+      p.solve = [this](const double relative_tolerance) {
         if (solve_throws)
           throw std::runtime_error("the factorization broke down");
+        tolerances.push_back(relative_tolerance);
         x0 = x;
         dx = jacobian.fullPivLu().solve(-residual);
+        return 1u;
       };
       p.apply_update = [this](const double theta) { x = x0 + theta * dx; };
       p.describe_residual = [this]() { return "x = " + std::to_string(x[0]); };
@@ -129,6 +134,19 @@ int main()
     check(result.residual <= 1e-12 * result.initial_residual && result.residual == p.residual.norm(),
           "circle: the reported residual is the final one, below the relative tolerance");
 
+    // Inexact Newton: the forcing terms (the relative tolerances given to the linear
+    // solves) start at 0.1, tighten as the residual falls, and never ask for more than
+    // half of what reaching the target still needs.
+    const auto &eta = p.tolerances;
+    check(eta.size() == result.iterations && !eta.empty() && eta[0] == 0.1,
+          "circle: forcing term 0.1 on the first iteration", std::to_string(eta.front()));
+    check(eta.back() < 1e-3 && eta.back() < eta[1],
+          "circle: the forcing term tightens as Newton converges", std::to_string(eta.back()));
+    bool bounded = true;
+    for (const double e : eta)
+      bounded = bounded && e <= 0.1 && e > 0;
+    check(bounded, "circle: forcing terms in (0, 0.1]");
+
     // Modified Newton: the same root with fewer Jacobians than iterations.
     TestProblem q        = circle();
     const auto  modified = solver(true, true).solve(q.callbacks());
@@ -155,6 +173,11 @@ int main()
     check((p.x - exact).norm() < 1e-14, "linear: the exact solution (0.1, 0.6)");
     check(p.n_residuals == 2, "linear: no line search (two residual assemblies)",
           std::to_string(p.n_residuals));
+    // One solve to half the target: tolerance 1e-12 · max(1, |R_0|) relative to |R_0|.
+    const double r0 = b.norm();
+    check(p.tolerances.size() == 1 && std::abs(p.tolerances[0] - 0.5e-12 * std::max(1.0, r0) / r0) < 1e-20,
+          "linear: the one solve is converged to half the Newton target",
+          p.tolerances.empty() ? "none" : std::to_string(p.tolerances[0]));
   }
 
   // log x = 1 from x = 10: the full Newton step goes to x = 10 − 10·log 10 < 0.

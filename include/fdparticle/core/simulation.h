@@ -69,6 +69,8 @@ namespace fdparticle
     /// Warn about particles smaller than the cells they sit in.
     void   check_resolution();
     void   setup_dofs();
+    /// The block layout of the system (NewtonSystem::Blocks) for the new DoFs.
+    void   setup_blocks();
     /// Refine around the particles (with transfer of the solution and its history).
     void   adapt_mesh(const bool transfer);
     void   make_constraints();

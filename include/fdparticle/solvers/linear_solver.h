@@ -44,8 +44,13 @@ namespace fdparticle
 
     /// Declare the parameters of every implementation, and the choice between them.
     static void declare_parameters(ParameterHandler &prm);
-    /// The implementation the parameters select, set up from them.
-    static std::unique_ptr<LinearSolver> create(ParameterHandler &prm);
+    /// The implementation the parameters select, set up from them; 'auto' chooses by the
+    /// size of the problem.
+    static std::unique_ptr<LinearSolver> create(ParameterHandler &prm,
+                                                const double      estimated_unknowns);
+
+    /// Whether solves take iterations (and the tolerance matters).
+    virtual bool iterative() const { return false; }
 
     /// A's sparsity pattern is about to change: release everything built on it. Must come
     /// before NewtonSystem::reinit() with a new pattern.

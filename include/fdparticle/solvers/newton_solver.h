@@ -39,6 +39,8 @@ namespace fdparticle
       Outcome      outcome = Outcome::converged;
       /// Newton corrections computed.
       unsigned int iterations       = 0;
+      /// Iterations of the linear solves, summed (one per solve for a direct solver).
+      unsigned int linear_iterations = 0;
       double       initial_residual = 0;
       double       residual         = 0;
       /// Why it failed, in words (empty when converged).
@@ -53,9 +55,11 @@ namespace fdparticle
       /// Assemble the residual at the current state (and the Jacobian if with_jacobian);
       /// return the residual's 2-norm.
       std::function<double(bool with_jacobian)> assemble;
-      /// Compute the correction from the last assembled Jacobian and residual; throws a
-      /// std::exception if the linear solve fails.
-      std::function<void()> solve;
+      /// Compute the correction from the last assembled Jacobian and residual, reducing
+      /// the linear residual by the given factor (an iterative solver; a direct one is
+      /// exact); return the linear iterations. Throws a std::exception if the linear
+      /// solve fails.
+      std::function<unsigned int(double relative_tolerance)> solve;
       /// Set the state to the state before the last solve() plus theta times its correction.
       std::function<void(double theta)> apply_update;
       /// Where the residual is largest, for the failure messages (may be empty).
@@ -90,6 +94,17 @@ namespace fdparticle
     /// tenfold: a reused Jacobian that contracts slower than that costs more iterations
     /// (each an assembly and a solve) than a new factorization saves.
     static constexpr double jacobian_reuse_reduction = 0.1;
+    /// Inexact Newton: the loosest linear tolerance. Looser solves than a tenfold
+    /// reduction give corrections the line search has to cut back.
+    static constexpr double max_forcing = 0.1;
+    /// Eisenstat & Walker's choice 2 (γ = 0.9, exponent 2) and its safeguard against a
+    /// tolerance that drops faster than the residual (applied above 0.1), as they
+    /// recommend.
+    static constexpr double forcing_gamma               = 0.9;
+    static constexpr double forcing_safeguard_threshold = 0.1;
+    /// The linear solve of the last iteration reaches half the Newton target, so that the
+    /// update, not round-off in the solve, decides convergence.
+    static constexpr double target_margin = 0.5;
   };
 } // namespace fdparticle
 

@@ -8,6 +8,9 @@
 
 #include <Eigen/Dense>
 
+#include <array>
+#include <utility>
+
 #include <vector>
 
 namespace fdparticle
@@ -46,6 +49,39 @@ namespace fdparticle
 
     /// 2-norm of the residual (r_fe; r_p).
     double residual_norm() const;
+
+    /// What an iterative solver needs beyond the matrix, set by the program when the
+    /// unknowns change (set_blocks) and each step (the scales). A direct solver ignores it.
+    struct Blocks
+    {
+      /// Each rank owns one contiguous range of DoFs and numbers it block by block,
+      /// u | λ | p: rank r's DoFs of block b are [range[r][b], range[r][b + 1]). Counted
+      /// over the ranks in order, block b's DoFs have a numbering of their own (the
+      /// "block numbering", 0 … size(b) − 1). Each rank's velocity DoF i and multiplier DoF
+      /// i sit at the same node and component, so the λ–u block of A is square in the
+      /// block numbering (doc/method.md §8).
+      std::vector<std::array<types::global_dof_index, 4>> range;
+      /// offset[r][b]: block number of rank r's first DoF of block b.
+      std::vector<std::array<types::global_dof_index, 3>> offset;
+
+      /// Block and block number of the global DoF g.
+      std::pair<unsigned int, types::global_dof_index> locate(const types::global_dof_index g) const;
+      /// The DoFs of block b over all ranks.
+      types::global_dof_index size(const unsigned int b) const;
+      /// For each velocity component, which owned velocity DoFs (in order) belong to it:
+      /// the near null space of AMG on the velocity and multiplier blocks.
+      std::vector<std::vector<bool>> velocity_modes;
+      /// The pressure mass matrix of each owned cell, and over its fluid part only (the
+      /// quadrature points of no particle): the pressure DoFs of a cell are consecutive,
+      /// so block k (pressure_dofs_per_cell² entries, row-major) belongs to the owned
+      /// pressure DoFs k·n … (k+1)·n − 1 in local order. Written by the assembler with
+      /// the Jacobian.
+      std::vector<double> pressure_mass, pressure_fluid_mass;
+      unsigned int        pressure_dofs_per_cell = 0;
+      /// ρ_f c0 and μ of the step: the scales of the pressure Schur complement.
+      double mass_coefficient = 0, viscosity = 0;
+    };
+    Blocks blocks;
 
     TrilinosWrappers::SparseMatrix             A;
     std::vector<TrilinosWrappers::MPI::Vector> B, C;

@@ -85,7 +85,6 @@ namespace fdparticle
     time.parse_parameters(prm);
     quadrature.parse_parameters(prm);
     assembler.parse_parameters(prm);
-    linear_solver = LinearSolver::create(prm);
     newton.parse_parameters(prm);
     output.parse_parameters(prm);
     refinement.parse_parameters(prm);
@@ -113,6 +112,13 @@ namespace fdparticle
                                ParameterTools::format_short(h) +
                                "): the mesh cannot resolve it. Refine with Geometry/Global "
                                "refinements or Refinement/Particle refinement levels."));
+    }
+    {
+      // Unknowns per cell of a large mesh: 2^dim nodes of Q2 per cell, 2·dim components
+      // (u, λ), and dim + 1 pressure DoFs.
+      const double unknowns_per_cell = 2 * dim * std::pow(2.0, dim) + dim + 1;
+      linear_solver = LinearSolver::create(prm, unknowns_per_cell *
+                                                  refinement.estimated_cells(domain, particles));
     }
     checkpointer.parse_parameters(prm, output.directory());
     repulsion.parse_parameters(prm);
@@ -213,7 +219,10 @@ namespace fdparticle
     pcout << "step " << std::setw(5) << stats.step << "  t = " << std::setw(10)
           << std::setprecision(6) << stats.time << " / " << end << " (" << std::fixed
           << std::setprecision(0) << std::setw(3) << 100 * stats.time / end << " %)"
-          << std::defaultfloat << "  Newton " << stats.nonlinear_iterations << "  residual "
+          << std::defaultfloat << "  Newton " << stats.nonlinear_iterations;
+    if (linear_solver->iterative())
+      pcout << "  linear " << stats.linear_iterations;
+    pcout << "  residual "
           << std::scientific << std::setprecision(3) << stats.residual << std::defaultfloat
           << "  DoFs " << stats.dofs << "  " << std::setprecision(3) << stats.wall_seconds
           << " s";

@@ -47,6 +47,7 @@ namespace fdparticle
   {
     TimerOutput::Scope t(*timer, "setup");
     dof_handler.distribute_dofs(fe);
+    setup_blocks();
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     velocity_dofs =
@@ -109,6 +110,74 @@ namespace fdparticle
     pressure_reference_dof = Utilities::MPI::broadcast(comm, best_dof, root);
     pressure_reference_point = Utilities::MPI::broadcast(comm, best_center, root);
     assembler.set_pressure_reference(pressure_reference_point);
+  }
+
+  template <int dim>
+  void Simulation<dim>::setup_blocks()
+  {
+    // Each rank numbers its own DoFs u | λ | p, keeping its contiguous range (deal.II's
+    // parallel vectors and DataOut need one range per rank; component_wise would number
+    // the blocks across the ranks). Within a block the old order is kept: u and λ of one
+    // node are neighbours in it (FESystem), so velocity DoF i and multiplier DoF i of a
+    // rank sit at the same node and component.
+    const IndexSet                 owned = dof_handler.locally_owned_dofs();
+    Assert(owned.is_contiguous(), ExcInternalError());
+    std::vector<unsigned int>      block(owned.n_elements(), 0);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (owned.is_element(dofs[i]))
+              block[owned.index_within_set(dofs[i])] =
+                static_cast<unsigned int>(Introspection<dim>::field(fe.system_to_component_index(i).first));
+        }
+    std::array<types::global_dof_index, 3> count{}; // DoFs of u, λ, p
+    for (const unsigned int b : block)
+      ++count[b];
+    const types::global_dof_index first = owned.n_elements() > 0 ? *owned.begin() : 0;
+    std::array<types::global_dof_index, 4> range{{first, first + count[0],
+                                                 first + count[0] + count[1],
+                                                 first + owned.n_elements()}};
+    std::vector<types::global_dof_index> new_numbers(owned.n_elements());
+    std::array<types::global_dof_index, 3> next{{range[0], range[1], range[2]}};
+    for (unsigned int k = 0; k < block.size(); ++k)
+      new_numbers[k] = next[block[k]]++;
+    dof_handler.renumber_dofs(new_numbers);
+
+    NewtonSystem::Blocks &b = system.blocks;
+    b.range = Utilities::MPI::all_gather(comm, range);
+    b.offset.assign(b.range.size(), {});
+    for (std::size_t r = 1; r < b.range.size(); ++r)
+      for (unsigned int k = 0; k < 3; ++k)
+        b.offset[r][k] = b.offset[r - 1][k] + (b.range[r - 1][k + 1] - b.range[r - 1][k]);
+    DoFTools::extract_constant_modes(dof_handler,
+                                     fe.component_mask(Introspection<dim>::velocities()),
+                                     b.velocity_modes);
+
+    // The block solver reads the pairing matrix off the λ–u block of A (see above); it
+    // would precondition with nonsense if the pairing of the numbers broke, so check it.
+    const types::global_dof_index shift = range[1] - range[0];
+    AssertThrow(range[2] - range[1] == shift, ExcInternalError());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            {
+              const auto [component, index] = fe.system_to_component_index(i);
+              if (Introspection<dim>::field(component) != Introspection<dim>::Field::velocity ||
+                  dofs[i] < range[0] || dofs[i] >= range[1])
+                continue;
+              const unsigned int j = fe.component_to_system_index(component + dim, index);
+              AssertThrow(dofs[j] == dofs[i] + shift, ExcInternalError());
+            }
+        }
+
+    b.pressure_dofs_per_cell = fe.base_element(fe.component_to_base_index(
+                                                   Introspection<dim>::pressure_component).first)
+                                 .n_dofs_per_cell();
   }
 
   template <int dim>
@@ -289,6 +358,7 @@ namespace fdparticle
   template void Simulation<2>::make_constraints();
   template void Simulation<2>::setup_matrix();
   template void Simulation<2>::set_initial_pressure();
+  template void Simulation<2>::setup_blocks();
   template void Simulation<2>::check_resolution();
   template void Simulation<3>::start();
   template void Simulation<3>::setup_dofs();
@@ -296,5 +366,6 @@ namespace fdparticle
   template void Simulation<3>::make_constraints();
   template void Simulation<3>::setup_matrix();
   template void Simulation<3>::set_initial_pressure();
+  template void Simulation<3>::setup_blocks();
   template void Simulation<3>::check_resolution();
 } // namespace fdparticle

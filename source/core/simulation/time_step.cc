@@ -78,6 +78,8 @@ namespace fdparticle
   NewtonSolver::Result Simulation<dim>::solve_time_step(StepStatistics &stats)
   {
     const auto c = time.coefficients();
+    system.blocks.mass_coefficient = fluid.density * c[0];
+    system.blocks.viscosity        = fluid.viscosity;
     // BDF history of the fluid: c1 u^n + c2 u^{n−1}.
     {
       TrilinosWrappers::MPI::Vector h(owned_dofs, comm);
@@ -104,14 +106,16 @@ namespace fdparticle
         linear_solver->operator_changed();
       return system.residual_norm();
     };
-    problem.solve = [&]() {
+    problem.solve = [&](const double relative_tolerance) {
+      LinearSolver::SolveInfo info;
       {
         TimerOutput::Scope t(*timer, "solve");
-        linear_solver->solve(system, newton.tolerance, dx, dy);
+        info = linear_solver->solve(system, relative_tolerance, dx, dy);
         update_constraints.distribute(dx);
       }
       x0 = solution;
       y0 = particles.get_unknowns();
+      return info.iterations;
     };
     problem.apply_update = [&](const double theta) {
       solution = x0;
@@ -126,6 +130,7 @@ namespace fdparticle
     if (result.converged())
       {
         stats.nonlinear_iterations = result.iterations;
+        stats.linear_iterations    = result.linear_iterations;
         stats.residual             = result.residual;
         update_particle_forces(last_integrals);
       }

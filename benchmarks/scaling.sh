@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Direct against iterative linear solver (doc/scaling.md): wall time, peak memory and
+# linear iterations of one Stokes step, on two 3D scenes at growing mesh size.
+#  - sediment: the seed's sediment scene (box 1 x 2 x 1, sphere R = 0.2, rho_P = 1.5,
+#    mu = 1), Subdivisions n x 2n x n, one BDF1 step of 0.1;
+#  - array:    prm/validation/array3d.prm (a fixed sphere in a periodic cube, c = 0.064,
+#    dt = 100: steady Stokes), Subdivisions n x n x n, no particle refinement.
+# Each run is one process on RANKS ranks (default 1); compare the ratios within one run of
+# the script (the machine is shared). Writes doc/scaling.csv, doc/scaling_time.png and
+# doc/scaling_memory.png.
+# Usage: bash benchmarks/scaling.sh     (~10 min on 2 cores with the default SIZES="4 6 8")
+set -uo pipefail
+top="$(cd "$(dirname "$0")/.." && pwd)"
+exe="${EXE:-$top/build/fdparticle}"
+work="${WORK:-$top/benchmarks/work/scaling}"
+sizes="${SIZES:-4 6 8}"
+ranks="${RANKS:-1}"
+[ -x "$exe" ] || bash "$top/scripts/build.sh"
+mkdir -p "$work"
+export OMPI_MCA_mpi_yield_when_idle=1
+
+sediment() { # n
+  printf 'set Dimension = 3\nset Gravity = 0, -10, 0\n'
+  printf 'subsection Geometry\n  set Lower corner = -0.5, -0.5, -0.5\n'
+  printf '  set Upper corner = 0.5, 1.5, 0.5\n  set Subdivisions = %s, %s, %s\nend\n' "$1" $((2 * $1)) "$1"
+  printf 'subsection Fluid\n  set Convection = false\nend\n'
+  printf 'subsection Particles\n  set Particles = 0, 1, 0 : 0.2 : 1.5\nend\n'
+  printf 'subsection Time\n  set End time = 0.1\n  set Time step = 0.1\nend\n'
+}
+
+array() { # n
+  sed "s/^  set Subdivisions .*/  set Subdivisions = $1, $1, $1/;
+       s/^  set Particle refinement levels .*/  set Particle refinement levels = 0/" \
+    "$top/prm/validation/array3d.prm"
+}
+
+csv="$top/doc/scaling.csv"
+echo "scene,n,solver,dofs,linear_iterations,wall_seconds,peak_mb" > "$csv"
+for name in sediment array; do
+  for n in $sizes; do
+    for solver in direct iterative; do
+      d="$work/$name-$n-$solver"
+      mkdir -p "$d"
+      { "$name" "$n"
+        printf 'subsection Solver\n  set Linear solver = %s\nend\n' "$solver"
+        printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$d/out"
+      } > "$d/scene.prm"
+      cmd=("$exe" "$d/scene.prm")
+      [ "$ranks" -gt 1 ] && cmd=(mpirun --oversubscribe -np "$ranks" "${cmd[@]}")
+      if ! /usr/bin/time -f "%e %M" -o "$d/time" "${cmd[@]}" > "$d/log" 2>&1; then
+        echo "$name $n $solver failed (see $d/log)"
+        continue
+      fi
+      read -r wall kb < "$d/time"
+      row=$(tail -1 "$d/out/statistics.csv")
+      echo "$name,$n,$solver,$(echo "$row" | cut -d, -f5),$(echo "$row" | cut -d, -f7),$wall,$((kb / 1024))" |
+        tee -a "$csv"
+    done
+  done
+done
+
+for what in time memory; do
+  col=6 label="wall time of the run [s]"
+  [ "$what" = memory ] && col=7 label="peak memory of one rank [MB]"
+  gnuplot <<GNUPLOT
+set terminal pngcairo size 800,500
+set output "$top/doc/scaling_$what.png"
+set datafile separator ","
+set logscale xy
+set xlabel "finite-element unknowns"
+set ylabel "$label"
+set key top left
+plot for [s in "sediment array"] for [v in "direct iterative"] \
+  "< grep '^'.s.',[0-9]*,'.v.',' $csv" using 4:$col with linespoints title s." ".v
+GNUPLOT
+done

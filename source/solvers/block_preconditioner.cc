@@ -1,0 +1,279 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+
+#include <fdparticle/solvers/block_preconditioner.h>
+
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
+
+#include <algorithm>
+#include <map>
+
+namespace fdparticle
+{
+  namespace
+  {
+    constexpr unsigned int velocity_block = 0, multiplier_block = 1, pressure_block = 2;
+
+    /// Local entries of a Trilinos vector (nullptr-safe for empty ones).
+    double *values(TrilinosWrappers::MPI::Vector &v) { return v.trilinos_vector()[0]; }
+    const double *values(const TrilinosWrappers::MPI::Vector &v)
+    {
+      return v.trilinos_vector()[0];
+    }
+  } // namespace
+
+  BlockPreconditioner::BlockPreconditioner()  = default;
+  BlockPreconditioner::~BlockPreconditioner() = default;
+
+  void BlockPreconditioner::clear()
+  {
+    velocity_amg.clear();
+    multiplier_amg.clear();
+    velocity_matrix.reset();
+    multiplier_matrix.reset();
+  }
+
+  std::unique_ptr<Epetra_CrsMatrix>
+  BlockPreconditioner::extract(const unsigned int               row_block,
+                               const std::vector<unsigned int> &col_blocks) const
+  {
+    const Epetra_CrsMatrix &E      = system->A.trilinos_matrix();
+    const auto &            blocks = system->blocks;
+    const Epetra_Map        map    = owned[row_block].make_trilinos_map(
+      system->A.get_mpi_communicator(), false);
+    auto                    result = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
+
+    std::map<int, double> row;
+    std::vector<int>      cols;
+    std::vector<double>   vals;
+    for (unsigned int r = 0; r < owned[row_block].n_elements(); ++r)
+      {
+        const int local = local_offset[row_block] + r;
+        int       n;
+        double *  v;
+        int *     c;
+        E.ExtractMyRowView(local, n, v, c);
+        row.clear();
+        for (int k = 0; k < n; ++k)
+          {
+            const auto [b, j] = blocks.locate(E.GCID(c[k]));
+            if (std::find(col_blocks.begin(), col_blocks.end(), b) != col_blocks.end())
+              row[static_cast<int>(j)] += v[k];
+          }
+        cols.clear();
+        vals.clear();
+        for (const auto &[j, value] : row)
+          {
+            cols.push_back(j);
+            vals.push_back(value);
+          }
+        result->InsertGlobalValues(static_cast<int>(blocks.locate(E.GRID(local)).second),
+                                   cols.size(), vals.data(), cols.data());
+      }
+    result->FillComplete(map, map);
+    return result;
+  }
+
+  void BlockPreconditioner::initialize(const NewtonSystem &system_, const BorderedOperator &op_)
+  {
+    clear();
+    system = &system_;
+    op     = &op_;
+    const auto &   blocks    = system->blocks;
+    const IndexSet all_owned = system->r_fe.locally_owned_elements();
+    const MPI_Comm comm      = system->r_fe.get_mpi_communicator();
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
+    AssertThrow(blocks.range.size() == Utilities::MPI::n_mpi_processes(comm) &&
+                  blocks.pressure_dofs_per_cell > 0,
+                ExcMessage("The Newton system has no block layout for the iterative solver."));
+    owned.resize(3);
+    local_offset.assign(3, 0);
+    for (unsigned int b = 0; b < 3; ++b)
+      {
+        owned[b] = IndexSet(blocks.size(b));
+        owned[b].add_range(blocks.offset[rank][b],
+                           blocks.offset[rank][b] + (blocks.range[rank][b + 1] - blocks.range[rank][b]));
+        local_offset[b] = blocks.range[rank][b] - blocks.range[rank][0];
+      }
+    full.reinit(all_owned, comm);
+    full2.reinit(all_owned, comm);
+    pressure_part.reinit(all_owned, comm);
+    u_in.reinit(owned[velocity_block], comm);
+    u_out.reinit(owned[velocity_block], comm);
+    l_in.reinit(owned[multiplier_block], comm);
+    l_out.reinit(owned[multiplier_block], comm);
+    op->reinit_vector(inner_rhs);
+    n_inner_iterations = 0;
+
+    // K = A_uu, and A_λλ + A_λu in the λ numbering: AMG with the velocity components as
+    // near null space (λ has the velocity's numbering, so the same modes).
+    TrilinosWrappers::PreconditionAMG::AdditionalData amg;
+    amg.elliptic              = true;
+    amg.higher_order_elements = true;
+    amg.constant_modes        = system->blocks.velocity_modes;
+    velocity_matrix           = extract(velocity_block, {velocity_block});
+    velocity_amg.initialize(*velocity_matrix, amg);
+    multiplier_matrix = extract(multiplier_block, {multiplier_block, velocity_block});
+    multiplier_amg.initialize(*multiplier_matrix, amg);
+
+    // S_p per cell: A's pressure block − (fluid mass + weight · particle mass)/μ.
+    {
+      const Epetra_CrsMatrix &E   = system->A.trilinos_matrix();
+      const auto &            b   = system->blocks;
+      const unsigned int      n_p = owned[pressure_block].n_elements();
+      const unsigned int      npc = b.pressure_dofs_per_cell;
+      pressure_inverse.assign(n_p * npc, 0.0);
+      Eigen::MatrixXd S(npc, npc);
+      for (unsigned int first = 0; first < n_p; first += npc)
+        {
+          for (unsigned int i = 0; i < npc; ++i)
+            for (unsigned int j = 0; j < npc; ++j)
+              {
+                const unsigned int k     = (first + i) * npc + j;
+                const double       fluid = b.pressure_fluid_mass[k];
+                S(i, j) = -(fluid + particle_weight * (b.pressure_mass[k] - fluid)) / b.viscosity;
+              }
+          const int first_global = E.GRID(local_offset[pressure_block] + first);
+          for (unsigned int i = 0; i < npc; ++i)
+            {
+              int     n;
+              double *v;
+              int *   c;
+              E.ExtractMyRowView(local_offset[pressure_block] + first + i, n, v, c);
+              for (int k = 0; k < n; ++k)
+                {
+                  const int j = E.GCID(c[k]) - first_global;
+                  if (j >= 0 && j < static_cast<int>(npc))
+                    S(i, j) += v[k];
+                }
+            }
+          const Eigen::MatrixXd Si = S.fullPivLu().inverse();
+          for (unsigned int i = 0; i < npc; ++i)
+            for (unsigned int j = 0; j < npc; ++j)
+              pressure_inverse[(first + i) * npc + j] = Si(i, j);
+        }
+    }
+
+    // The particle block: S_y = D − C S_λ⁻¹ B, column by column.
+    const unsigned int m   = op->n_particle_unknowns();
+    const unsigned int n_l = owned[multiplier_block].n_elements();
+    Eigen::MatrixXd    S   = system->D;
+    for (unsigned int j = 0; j < m; ++j)
+      {
+        std::copy_n(values(system->B[j]) + local_offset[multiplier_block], n_l, values(l_in));
+        multiplier_amg.vmult(l_out, l_in);
+        full = 0;
+        std::copy_n(values(l_out), n_l, values(full) + local_offset[multiplier_block]);
+        S.col(j) -= op->border_product(full);
+      }
+    particle_schur.compute(S);
+    AssertThrow(m == 0 || particle_schur.isInvertible(),
+                ExcMessage("The particle block of the Newton system is singular: a particle "
+                           "is not resolved by the mesh (too few cells inside it?)."));
+  }
+
+  void BlockPreconditioner::vmult_rest(BlockVector &dst, const BlockVector &src) const
+  {
+    const double *     r   = values(src.block(0));
+    double *           out = values(dst.block(0));
+    const unsigned int n_u = owned[velocity_block].n_elements();
+    const unsigned int n_l = owned[multiplier_block].n_elements();
+    const unsigned int o_l = local_offset[multiplier_block];
+
+    // λ and y: z = S_λ⁻¹ r_λ, y = S_y⁻¹ (r_y − C z), λ = S_λ⁻¹ (r_λ − B y).
+    std::copy_n(r + o_l, n_l, values(l_in));
+    multiplier_amg.vmult(l_out, l_in);
+    const unsigned int m = op->n_particle_unknowns();
+    Eigen::VectorXd    y = Eigen::VectorXd::Zero(m);
+    if (m > 0)
+      {
+        full = 0;
+        std::copy_n(values(l_out), n_l, values(full) + o_l);
+        y    = particle_schur.solve(op->particle_part(src) - op->border_product(full));
+        full = 0;
+        op->add_border(full, y);
+        double *      li = values(l_in);
+        const double *by = values(full) + o_l;
+        for (unsigned int i = 0; i < n_l; ++i)
+          li[i] -= by[i];
+        multiplier_amg.vmult(l_out, l_in);
+      }
+    op->set_particle_part(dst, y);
+
+    // u = K⁻¹ (r_u − A_uλ λ).
+    full = 0;
+    std::copy_n(values(l_out), n_l, values(full) + o_l);
+    system->A.vmult(full2, full);
+    const double *t  = values(full2);
+    double *      ui = values(u_in);
+    for (unsigned int i = 0; i < n_u; ++i)
+      ui[i] = r[i] - t[i];
+    velocity_amg.vmult(u_out, u_in);
+
+    dst.block(0) = 0;
+    std::copy_n(values(u_out), n_u, out);
+    std::copy_n(values(l_out), n_l, out + o_l);
+  }
+
+  void BlockPreconditioner::vmult_inner_operator(BlockVector &dst, const BlockVector &src) const
+  {
+    op->vmult(dst, src);
+    std::fill_n(values(dst.block(0)) + local_offset[pressure_block],
+                owned[pressure_block].n_elements(), 0.0);
+  }
+
+  void BlockPreconditioner::vmult(BlockVector &dst, const BlockVector &src) const
+  {
+    const unsigned int n_p = owned[pressure_block].n_elements();
+    const unsigned int o_p = local_offset[pressure_block];
+    const unsigned int npc = system->blocks.pressure_dofs_per_cell;
+
+    // p = S_p⁻¹ r_p, cell by cell.
+    const double *r = values(src.block(0));
+    pressure_part   = 0;
+    double *p       = values(pressure_part) + o_p;
+    for (unsigned int first = 0; first < n_p; first += npc)
+      for (unsigned int i = 0; i < npc; ++i)
+        for (unsigned int j = 0; j < npc; ++j)
+          p[first + i] += pressure_inverse[(first + i) * npc + j] * r[o_p + first + j];
+
+    // J_w w = r_w − J_wp p (only the velocity rows see the pressure).
+    system->A.vmult(full2, pressure_part);
+    inner_rhs = src;
+    {
+      double *      ri = values(inner_rhs.block(0));
+      const double *t  = values(full2);
+      for (unsigned int i = 0; i < owned[velocity_block].n_elements(); ++i)
+        ri[i] -= t[i];
+      std::fill_n(ri + o_p, n_p, 0.0);
+    }
+    struct InnerOperator
+    {
+      const BlockPreconditioner &self;
+      void vmult(BlockVector &d, const BlockVector &s) const { self.vmult_inner_operator(d, s); }
+    } inner_operator{*this};
+    struct InnerPreconditioner
+    {
+      const BlockPreconditioner &self;
+      void vmult(BlockVector &d, const BlockVector &s) const { self.vmult_rest(d, s); }
+    } inner_preconditioner{*this};
+    SolverControl control(max_inner_iterations, inner_tolerance * inner_rhs.l2_norm(), false,
+                          false);
+    SolverFGMRES<BlockVector> fgmres(control, SolverFGMRES<BlockVector>::AdditionalData(
+                                                max_inner_iterations));
+    dst = 0;
+    try
+      {
+        fgmres.solve(inner_operator, dst, inner_rhs, inner_preconditioner);
+      }
+    catch (const SolverControl::NoConvergence &)
+      {
+        // An inexact inner solve is still a preconditioner; the outer FGMRES, which
+        // allows one that changes, decides whether the whole solve converges.
+      }
+    n_inner_iterations += control.last_step();
+    std::copy_n(values(pressure_part) + o_p, n_p, values(dst.block(0)) + o_p);
+  }
+} // namespace fdparticle
