@@ -168,8 +168,10 @@ namespace fdparticle
         std::copy_n(values(l_out), n_l, values(full) + local_offset[multiplier_block]);
         S.col(j) -= op->border_product(full);
       }
+    if (m == 0)
+      return;
     particle_schur.compute(S);
-    AssertThrow(m == 0 || particle_schur.isInvertible(),
+    AssertThrow(particle_schur.isInvertible(),
                 ExcMessage("The particle block of the Newton system is singular: a particle "
                            "is not resolved by the mesh (too few cells inside it?)."));
   }
