@@ -62,6 +62,7 @@ namespace fdparticle
               {"dofs", double(s.dofs)},
               {"nonlinear_iterations", double(s.nonlinear_iterations)},
               {"linear_iterations", double(s.linear_iterations)},
+              {"inner_iterations", double(s.inner_iterations)},
               {"residual", s.residual},
               {"wall_seconds", s.wall_seconds},
               {"initial_residual", s.initial_residual},

@@ -107,10 +107,10 @@ namespace fdparticle
       }
     info.iterations = control.last_step();
     info.residual   = rhs_norm > 0 ? control.last_value() / rhs_norm : 0;
+    info.inner_iterations = preconditioner.inner_iterations() - inner_before;
     if (verbose && Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
       std::cout << "  iterative solver: " << info.iterations << " FGMRES iterations ("
-                << preconditioner.inner_iterations() - inner_before
-                << " inner), relative residual " << info.residual << " for " << tolerance
+                << info.inner_iterations << " inner), relative residual " << info.residual << " for " << tolerance
                 << std::endl;
     if (reference_iterations == 0)
       reference_iterations = std::max(1u, info.iterations);

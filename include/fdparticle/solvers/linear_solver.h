@@ -38,6 +38,8 @@ namespace fdparticle
     {
       unsigned int iterations = 0;
       double       residual   = 0;
+      /// Iterations of inner solves inside the preconditioner (0 if it has none).
+      unsigned int inner_iterations = 0;
     };
 
     virtual ~LinearSolver() = default;

@@ -106,6 +106,7 @@ namespace fdparticle
         linear_solver->operator_changed();
       return system.residual_norm();
     };
+    unsigned int inner_iterations = 0;
     problem.solve = [&](const double relative_tolerance) {
       LinearSolver::SolveInfo info;
       {
@@ -113,6 +114,7 @@ namespace fdparticle
         info = linear_solver->solve(system, relative_tolerance, dx, dy);
         update_constraints.distribute(dx);
       }
+      inner_iterations += info.inner_iterations;
       x0 = solution;
       y0 = particles.get_unknowns();
       return info.iterations;
@@ -131,6 +133,7 @@ namespace fdparticle
       {
         stats.nonlinear_iterations = result.iterations;
         stats.linear_iterations    = result.linear_iterations;
+        stats.inner_iterations     = inner_iterations;
         stats.residual             = result.residual;
         update_particle_forces(last_integrals);
       }
