@@ -33,6 +33,7 @@ namespace fdparticle
     multiplier_amg.clear();
     velocity_matrix.reset();
     multiplier_matrix.reset();
+    coupling_matrix.reset();
   }
 
   std::unique_ptr<Epetra_CrsMatrix>
@@ -72,7 +73,13 @@ namespace fdparticle
         result->InsertGlobalValues(static_cast<int>(blocks.locate(E.GRID(local)).second),
                                    cols.size(), vals.data(), cols.data());
       }
-    result->FillComplete(map, map);
+    // Blocks that share a numbering share their owned set too (NewtonSystem::Blocks).
+    Assert(std::all_of(col_blocks.begin(), col_blocks.end(),
+                       [&](const unsigned int b) { return owned[b] == owned[col_blocks.front()]; }),
+           ExcInternalError());
+    result->FillComplete(owned[col_blocks.front()].make_trilinos_map(
+                           system->A.get_mpi_communicator(), false),
+                         map);
     return result;
   }
 
@@ -113,10 +120,14 @@ namespace fdparticle
     amg.elliptic              = true;
     amg.higher_order_elements = true;
     amg.constant_modes        = system->blocks.velocity_modes;
+    amg.smoother_sweeps       = smoother_sweeps;
+    amg.aggregation_threshold = velocity_aggregation_threshold;
     velocity_matrix           = extract(velocity_block, {velocity_block});
     velocity_amg.initialize(*velocity_matrix, amg);
+    amg.aggregation_threshold = multiplier_aggregation_threshold;
     multiplier_matrix = extract(multiplier_block, {multiplier_block, velocity_block});
     multiplier_amg.initialize(*multiplier_matrix, amg);
+    coupling_matrix = extract(velocity_block, {multiplier_block});
 
     // S_p per cell: A's pressure block − (fluid mass + weight · particle mass)/μ.
     {
@@ -205,10 +216,8 @@ namespace fdparticle
     op->set_particle_part(dst, y);
 
     // u = K⁻¹ (r_u − A_uλ λ).
-    full = 0;
-    std::copy_n(values(l_out), n_l, values(full) + o_l);
-    system->A.vmult(full2, full);
-    const double *t  = values(full2);
+    coupling_matrix->Multiply(false, l_out.trilinos_vector(), u_out.trilinos_vector());
+    const double *t  = values(u_out);
     double *      ui = values(u_in);
     for (unsigned int i = 0; i < n_u; ++i)
       ui[i] = r[i] - t[i];

@@ -77,9 +77,21 @@ namespace fdparticle
     /// scene (h = R/1.6), against [0.08, 570] with 0 and [0.03, 1.7] with 0.03.
     static constexpr double particle_weight = 0.01;
 
+    /// ML settings for the two AMG preconditioners. deal.II's defaults (two smoother
+    /// sweeps, aggregation threshold 1e-4) needed 31 inner iterations per outer one on the
+    /// steady periodic 3D array (6³ cells); three sweeps and thresholds that drop the weak
+    /// couplings of the Q2 matrices (0.02 for K, 0.05 for A_λλ + M, whose rows outside the
+    /// particles are only diagonal) need 10–14, and the whole solve took 2.5–4.5 times less
+    /// time on the 3D array and sediment scenes (doc/scaling.md). Larger thresholds (0.1)
+    /// coarsen too fast and the count rises again.
+    static constexpr unsigned int smoother_sweeps                  = 3;
+    static constexpr double       velocity_aggregation_threshold   = 0.02;
+    static constexpr double       multiplier_aggregation_threshold = 0.05;
+
     /// The rows of block row_block of A with the columns of the blocks col_blocks, all
     /// numbered from their block's start; entries of different column blocks at the same
-    /// number are summed (used for A_λλ + A_λu, which share the numbering).
+    /// number are summed (used for A_λλ + A_λu, which share the numbering). The column
+    /// blocks must share their numbering (u and λ do).
     std::unique_ptr<Epetra_CrsMatrix>
     extract(const unsigned int row_block, const std::vector<unsigned int> &col_blocks) const;
 
@@ -96,7 +108,8 @@ namespace fdparticle
     /// Where each block's owned entries start in the local array of an A-layout vector.
     std::vector<unsigned int> local_offset;
 
-    std::unique_ptr<Epetra_CrsMatrix> velocity_matrix, multiplier_matrix;
+    /// A_uu, A_λλ + A_λu (both in the λ numbering) and A_uλ, from the blocks of A.
+    std::unique_ptr<Epetra_CrsMatrix> velocity_matrix, multiplier_matrix, coupling_matrix;
     TrilinosWrappers::PreconditionAMG velocity_amg, multiplier_amg;
     /// S_p⁻¹, cell by cell (row-major blocks as NewtonSystem::Blocks::pressure_mass).
     std::vector<double> pressure_inverse;
