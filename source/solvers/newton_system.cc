@@ -29,6 +29,15 @@ namespace fdparticle
     return offset[last][b] + (range[last][b + 1] - range[last][b]);
   }
 
+  IndexSet NewtonSystem::Blocks::global_dofs(const unsigned int b) const
+  {
+    IndexSet dofs(range.empty() ? 0 : range.back()[3]);
+    for (const auto &r : range)
+      dofs.add_range(r[b], r[b + 1]);
+    dofs.compress();
+    return dofs;
+  }
+
   bool NewtonSystem::has_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const
   {
     if (A.m() == 0)

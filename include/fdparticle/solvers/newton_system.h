@@ -68,6 +68,8 @@ namespace fdparticle
       std::pair<unsigned int, types::global_dof_index> locate(const types::global_dof_index g) const;
       /// The DoFs of block b over all ranks.
       types::global_dof_index size(const unsigned int b) const;
+      /// The global DoF numbers of block b (one interval per rank).
+      IndexSet global_dofs(const unsigned int b) const;
       /// For each velocity component, which owned velocity DoFs (in order) belong to it:
       /// the near null space of AMG on the velocity and multiplier blocks.
       std::vector<std::vector<bool>> velocity_modes;
@@ -75,7 +77,7 @@ namespace fdparticle
       /// quadrature points of no particle): the pressure DoFs of a cell are consecutive,
       /// so block k (pressure_dofs_per_cell² entries, row-major) belongs to the owned
       /// pressure DoFs k·n … (k+1)·n − 1 in local order. Written by the assembler with
-      /// the Jacobian.
+      /// the Jacobian when pressure_dofs_per_cell > 0 (the iterative solver only).
       std::vector<double> pressure_mass, pressure_fluid_mass;
       unsigned int        pressure_dofs_per_cell = 0;
       /// ρ_f c0 and μ of the step: the scales of the pressure Schur complement.

@@ -50,26 +50,10 @@ namespace fdparticle
     setup_blocks();
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
-    velocity_dofs =
-      DoFTools::extract_dofs(dof_handler, fe.component_mask(Introspection<dim>::velocities()));
-    // λ DoFs of owned and ghost cells: the constraints need them on every rank that sees them.
-    multiplier_dofs.clear();
-    multiplier_dofs.set_size(dof_handler.n_dofs());
-    {
-      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (!cell->is_artificial())
-          {
-            cell->get_dof_indices(dofs);
-            for (unsigned int i = 0; i < dofs.size(); ++i)
-              {
-                if (Introspection<dim>::field(fe.system_to_component_index(i).first) ==
-                    Introspection<dim>::Field::multiplier)
-                  multiplier_dofs.add_index(dofs[i]);
-              }
-          }
-      multiplier_dofs.compress();
-    }
+    // Owned velocity DoFs; λ DoFs of owned and ghost cells (the constraints need them on
+    // every rank that sees them).
+    velocity_dofs   = system.blocks.global_dofs(0) & owned_dofs;
+    multiplier_dofs = system.blocks.global_dofs(1) & relevant_dofs;
 
     static_constraints.clear();
     static_constraints.reinit(relevant_dofs);
@@ -175,9 +159,13 @@ namespace fdparticle
             }
         }
 
-    b.pressure_dofs_per_cell = fe.base_element(fe.component_to_base_index(
-                                                   Introspection<dim>::pressure_component).first)
-                                 .n_dofs_per_cell();
+    // Only the iterative solver reads the cell pressure masses; 0 tells the assembler to
+    // skip them.
+    b.pressure_dofs_per_cell =
+      linear_solver->iterative() ?
+        fe.base_element(fe.component_to_base_index(Introspection<dim>::pressure_component).first)
+          .n_dofs_per_cell() :
+        0;
   }
 
   template <int dim>
