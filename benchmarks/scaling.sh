@@ -6,8 +6,9 @@
 #  - array:    prm/validation/array3d.prm (a fixed sphere in a periodic cube, c = 0.064,
 #    dt = 100: steady Stokes), Subdivisions n x n x n, no particle refinement.
 # Each run is one process on RANKS ranks (default 1); compare the ratios within one run of
-# the script (the machine is shared). Writes doc/scaling.csv, doc/scaling_time.png and
-# doc/scaling_memory.png.
+# the script (the machine is shared). Writes doc/scaling.csv, doc/scaling_time.png,
+# doc/scaling_memory.png and doc/scaling_iterations.png (FGMRES iterations against mesh
+# size). SOLVERS="iterative" skips the direct solver.
 # Usage: bash benchmarks/scaling.sh     (~10 min on 2 cores with the default SIZES="4 6 8")
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
@@ -15,6 +16,7 @@ exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/scaling}"
 sizes="${SIZES:-4 6 8}"
 ranks="${RANKS:-1}"
+solvers="${SOLVERS:-direct iterative}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
 export OMPI_MCA_mpi_yield_when_idle=1
@@ -35,10 +37,10 @@ array() { # n
 }
 
 csv="$top/doc/scaling.csv"
-echo "scene,n,solver,dofs,linear_iterations,wall_seconds,peak_mb" > "$csv"
+echo "scene,n,solver,dofs,linear_iterations,inner_iterations,wall_seconds,peak_mb" > "$csv"
 for name in sediment array; do
   for n in $sizes; do
-    for solver in direct iterative; do
+    for solver in $solvers; do
       d="$work/$name-$n-$solver"
       mkdir -p "$d"
       { "$name" "$n"
@@ -53,15 +55,15 @@ for name in sediment array; do
       fi
       read -r wall kb < "$d/time"
       row=$(tail -1 "$d/out/statistics.csv")
-      echo "$name,$n,$solver,$(echo "$row" | cut -d, -f5),$(echo "$row" | cut -d, -f7),$wall,$((kb / 1024))" |
+      echo "$name,$n,$solver,$(echo "$row" | cut -d, -f5,7,8),$wall,$((kb / 1024))" |
         tee -a "$csv"
     done
   done
 done
 
 for what in time memory; do
-  col=6 label="wall time of the run [s]"
-  [ "$what" = memory ] && col=7 label="peak memory of one rank [MB]"
+  col=7 label="wall time of the run [s]"
+  [ "$what" = memory ] && col=8 label="peak memory of one rank [MB]"
   gnuplot <<GNUPLOT
 set terminal pngcairo size 800,500
 set output "$top/doc/scaling_$what.png"
@@ -71,6 +73,20 @@ set xlabel "finite-element unknowns"
 set ylabel "$label"
 set key top left
 plot for [s in "sediment array"] for [v in "direct iterative"] \
-  "< grep '^'.s.',[0-9]*,'.v.',' $csv" using 4:$col with linespoints title s." ".v
+  sprintf("< grep '^%s,[0-9]*,%s,' $csv", s, v) using 4:$col with linespoints title s." ".v
 GNUPLOT
 done
+
+gnuplot <<GNUPLOT
+set terminal pngcairo size 800,500
+set output "$top/doc/scaling_iterations.png"
+set datafile separator ","
+set logscale x
+set xlabel "finite-element unknowns"
+set ylabel "iterations of the step"
+set key top left
+plot for [s in "sediment array"] \
+  sprintf("< grep '^%s,[0-9]*,iterative,' $csv", s) using 4:5 with linespoints title s." FGMRES", \
+  for [s in "sediment array"] \
+  sprintf("< grep '^%s,[0-9]*,iterative,' $csv", s) using 4:(\$6/10) with linespoints title s." inner / 10"
+GNUPLOT
