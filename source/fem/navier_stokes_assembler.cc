@@ -133,7 +133,9 @@ namespace fdparticle
         first_pressure = range[2];
         blocks.pressure_fluid_mass.assign((range[3] - range[2]) * n_p, 0.0);
         blocks.pressure_mass.assign((range[3] - range[2]) * n_p, 0.0);
+        blocks.velocity_mass = TrilinosWrappers::MPI::Vector(system.r_fe); // zero here
       }
+    Vector<double> local_velocity_mass(n);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -213,6 +215,14 @@ namespace fdparticle
                         fluid_part[a * n_p + b] += m;
                     }
                 }
+            local_velocity_mass = 0;
+            for (unsigned int i = 0; i < n; ++i)
+              if (Introspection<dim>::field(fe.system_to_component_index(i).first) ==
+                  Introspection<dim>::Field::velocity)
+                for (unsigned int q = 0; q < nq; ++q)
+                  local_velocity_mass[i] += fv.shape_value(i, q) * fv.shape_value(i, q) * fv.JxW(q);
+            constraints.distribute_local_to_global(local_velocity_mass, dof_indices,
+                                                   blocks.velocity_mass);
           }
         if (with_matrix)
           {
@@ -233,6 +243,8 @@ namespace fdparticle
       }
 
     system.r_fe.compress(VectorOperation::add);
+    if (fluid_mass)
+      blocks.velocity_mass.compress(VectorOperation::add);
     if (with_matrix)
       {
         system.A.compress(VectorOperation::add);

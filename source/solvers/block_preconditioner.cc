@@ -4,8 +4,10 @@
 
 #include <fdparticle/solvers/block_preconditioner.h>
 
+#include <EpetraExt_MatrixMatrix.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
+#include <Epetra_Vector.h>
 
 #include <algorithm>
 #include <map>
@@ -31,6 +33,8 @@ namespace fdparticle
   {
     velocity_amg.clear();
     multiplier_amg.clear();
+    pressure_amg.clear();
+    pressure_laplacian.reset();
     velocity_matrix.reset();
     multiplier_matrix.reset();
     coupling_matrix.reset();
@@ -167,6 +171,59 @@ namespace fdparticle
         }
     }
 
+    // Cahouet–Chabard's second term: L = G M_u⁻¹ Gᵀ, the pressure Laplacian of the
+    // lumped (diagonal) velocity mass, with constrained velocities left out.
+    {
+      const auto   G   = extract(pressure_block, {velocity_block});
+      Epetra_Vector inverse_mass(G->DomainMap());
+      const double *m = values(system->blocks.velocity_mass);
+      for (int i = 0; i < inverse_mass.MyLength(); ++i)
+        inverse_mass[i] = (m[i] > 0 ? 1.0 / m[i] : 0.0);
+      Epetra_CrsMatrix G_scaled(*G);
+      G_scaled.RightScale(inverse_mass);
+      Epetra_CrsMatrix product(Copy, G->RowMap(), 0);
+      EpetraExt::MatrixMatrix::Multiply(G_scaled, false, *G, true, product);
+      // The pressure level is in L's kernel, and a pinned pressure DoF has an empty row:
+      // a relative diagonal shift, and 1 on empty rows, keep AMG's coarse factorization
+      // regular.
+      pressure_laplacian = std::make_unique<Epetra_CrsMatrix>(Copy, G->RowMap(), 0);
+      std::vector<int>    cols;
+      std::vector<double> vals;
+      for (int r = 0; r < product.NumMyRows(); ++r)
+        {
+          int     n;
+          double *v;
+          int *   c;
+          product.ExtractMyRowView(r, n, v, c);
+          const int row = product.GRID(r);
+          cols.clear();
+          vals.clear();
+          bool has_diagonal = false;
+          for (int k = 0; k < n; ++k)
+            {
+              cols.push_back(product.GCID(c[k]));
+              vals.push_back(v[k]);
+              if (cols.back() == row)
+                {
+                  has_diagonal = true;
+                  vals.back()  = (v[k] > 0 ? v[k] * (1 + laplacian_shift) : 1.0);
+                }
+            }
+          if (!has_diagonal)
+            {
+              cols.push_back(row);
+              vals.push_back(1.0);
+            }
+          pressure_laplacian->InsertGlobalValues(row, cols.size(), vals.data(), cols.data());
+        }
+      pressure_laplacian->FillComplete(G->RowMap(), G->RowMap());
+      TrilinosWrappers::PreconditionAMG::AdditionalData pressure_data;
+      pressure_data.elliptic = true;
+      pressure_amg.initialize(*pressure_laplacian, pressure_data);
+      p_in.reinit(owned[pressure_block], comm);
+      p_out.reinit(owned[pressure_block], comm);
+    }
+
     // The particle block: S_y = D − C S_λ⁻¹ B, column by column.
     const unsigned int m   = op->n_particle_unknowns();
     const unsigned int n_l = owned[multiplier_block].n_elements();
@@ -249,6 +306,17 @@ namespace fdparticle
       for (unsigned int i = 0; i < npc; ++i)
         for (unsigned int j = 0; j < npc; ++j)
           p[first + i] += pressure_inverse[(first + i) * npc + j] * r[o_p + first + j];
+
+    // − ρ_f c0 L⁻¹ r_p: Cahouet–Chabard's term, the inertia of the velocity that the
+    // pressure has to move (S⁻¹ ≈ −(μ M_p⁻¹ + ρ_f c0 L⁻¹), doc/method.md §8).
+    {
+      std::copy_n(r + o_p, n_p, values(p_in));
+      pressure_amg.vmult(p_out, p_in);
+      const double  alpha = system->blocks.mass_coefficient;
+      const double *q     = values(p_out);
+      for (unsigned int i = 0; i < n_p; ++i)
+        p[i] -= alpha * q[i];
+    }
 
     // J_w w = r_w − J_wp p (only the velocity rows see the pressure).
     system->A.vmult(full2, pressure_part);

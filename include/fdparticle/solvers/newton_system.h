@@ -80,6 +80,9 @@ namespace fdparticle
       /// the Jacobian when pressure_dofs_per_cell > 0 (the iterative solver only).
       std::vector<double> pressure_mass, pressure_fluid_mass;
       unsigned int        pressure_dofs_per_cell = 0;
+      /// The diagonal of the velocity mass matrix (0 at constrained DoFs), in r_fe's
+      /// layout, written with the pressure masses.
+      TrilinosWrappers::MPI::Vector velocity_mass;
       /// ρ_f c0 and μ of the step: the scales of the pressure Schur complement.
       double mass_coefficient = 0, viscosity = 0;
     };
