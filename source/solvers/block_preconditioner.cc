@@ -115,9 +115,19 @@ namespace fdparticle
     u_out.reinit(owned[velocity_block], comm);
     l_in.reinit(owned[multiplier_block], comm);
     l_out.reinit(owned[multiplier_block], comm);
+    p_in.reinit(owned[pressure_block], comm);
+    p_out.reinit(owned[pressure_block], comm);
     op->reinit_vector(inner_rhs);
     n_inner_iterations = 0;
 
+    initialize_velocity_and_multiplier();
+    initialize_pressure_cells();
+    initialize_pressure_laplacian();
+    initialize_particle_block();
+  }
+
+  void BlockPreconditioner::initialize_velocity_and_multiplier()
+  {
     // K = A_uu, and A_λλ + A_λu in the λ numbering: AMG with the velocity components as
     // near null space (λ has the velocity's numbering, so the same modes).
     TrilinosWrappers::PreconditionAMG::AdditionalData amg;
@@ -132,99 +142,85 @@ namespace fdparticle
     multiplier_matrix = extract(multiplier_block, {multiplier_block, velocity_block});
     multiplier_amg.initialize(*multiplier_matrix, amg);
     coupling_matrix = extract(velocity_block, {multiplier_block});
+  }
 
+  void BlockPreconditioner::initialize_pressure_cells()
+  {
     // S_p per cell: A's pressure block − (fluid mass + weight · particle mass)/μ.
-    {
-      const Epetra_CrsMatrix &E   = system->A.trilinos_matrix();
-      const auto &            b   = system->blocks;
-      const unsigned int      n_p = owned[pressure_block].n_elements();
-      const unsigned int      npc = b.pressure_dofs_per_cell;
-      pressure_inverse.assign(n_p * npc, 0.0);
-      Eigen::MatrixXd S(npc, npc);
-      for (unsigned int first = 0; first < n_p; first += npc)
-        {
-          for (unsigned int i = 0; i < npc; ++i)
-            for (unsigned int j = 0; j < npc; ++j)
-              {
-                const unsigned int k     = (first + i) * npc + j;
-                const double       fluid = b.pressure_fluid_mass[k];
-                S(i, j) = -(fluid + particle_weight * (b.pressure_mass[k] - fluid)) / b.viscosity;
-              }
-          const int first_global = E.GRID(local_offset[pressure_block] + first);
-          for (unsigned int i = 0; i < npc; ++i)
+    const Epetra_CrsMatrix &E   = system->A.trilinos_matrix();
+    const auto &            b   = system->blocks;
+    const unsigned int      n_p = owned[pressure_block].n_elements();
+    const unsigned int      npc = b.pressure_dofs_per_cell;
+    pressure_inverse.assign(n_p * npc, 0.0);
+    Eigen::MatrixXd S(npc, npc);
+    for (unsigned int first = 0; first < n_p; first += npc)
+      {
+        for (unsigned int i = 0; i < npc; ++i)
+          for (unsigned int j = 0; j < npc; ++j)
             {
-              int     n;
-              double *v;
-              int *   c;
-              E.ExtractMyRowView(local_offset[pressure_block] + first + i, n, v, c);
-              for (int k = 0; k < n; ++k)
-                {
-                  const int j = E.GCID(c[k]) - first_global;
-                  if (j >= 0 && j < static_cast<int>(npc))
-                    S(i, j) += v[k];
-                }
+              const unsigned int k     = (first + i) * npc + j;
+              const double       fluid = b.pressure_fluid_mass[k];
+              S(i, j) = -(fluid + particle_weight * (b.pressure_mass[k] - fluid)) / b.viscosity;
             }
-          const Eigen::MatrixXd Si = S.fullPivLu().inverse();
-          for (unsigned int i = 0; i < npc; ++i)
-            for (unsigned int j = 0; j < npc; ++j)
-              pressure_inverse[(first + i) * npc + j] = Si(i, j);
-        }
-    }
+        const int first_global = E.GRID(local_offset[pressure_block] + first);
+        for (unsigned int i = 0; i < npc; ++i)
+          {
+            int     n;
+            double *v;
+            int *   c;
+            E.ExtractMyRowView(local_offset[pressure_block] + first + i, n, v, c);
+            for (int k = 0; k < n; ++k)
+              {
+                const int j = E.GCID(c[k]) - first_global;
+                if (j >= 0 && j < static_cast<int>(npc))
+                  S(i, j) += v[k];
+              }
+          }
+        const Eigen::MatrixXd Si = S.fullPivLu().inverse();
+        for (unsigned int i = 0; i < npc; ++i)
+          for (unsigned int j = 0; j < npc; ++j)
+            pressure_inverse[(first + i) * npc + j] = Si(i, j);
+      }
+  }
 
+  void BlockPreconditioner::initialize_pressure_laplacian()
+  {
     // Cahouet–Chabard's second term: L = G M_u⁻¹ Gᵀ, the pressure Laplacian of the
     // lumped (diagonal) velocity mass, with constrained velocities left out.
-    {
-      const auto   G   = extract(pressure_block, {velocity_block});
-      Epetra_Vector inverse_mass(G->DomainMap());
-      const double *m = values(system->blocks.velocity_mass);
-      for (int i = 0; i < inverse_mass.MyLength(); ++i)
-        inverse_mass[i] = (m[i] > 0 ? 1.0 / m[i] : 0.0);
-      Epetra_CrsMatrix G_scaled(*G);
-      G_scaled.RightScale(inverse_mass);
-      Epetra_CrsMatrix product(Copy, G->RowMap(), 0);
-      EpetraExt::MatrixMatrix::Multiply(G_scaled, false, *G, true, product);
-      // The pressure level is in L's kernel, and a pinned pressure DoF has an empty row:
-      // a relative diagonal shift, and 1 on empty rows, keep AMG's coarse factorization
-      // regular.
-      pressure_laplacian = std::make_unique<Epetra_CrsMatrix>(Copy, G->RowMap(), 0);
-      std::vector<int>    cols;
-      std::vector<double> vals;
-      for (int r = 0; r < product.NumMyRows(); ++r)
-        {
-          int     n;
-          double *v;
-          int *   c;
-          product.ExtractMyRowView(r, n, v, c);
-          const int row = product.GRID(r);
-          cols.clear();
-          vals.clear();
-          bool has_diagonal = false;
-          for (int k = 0; k < n; ++k)
-            {
-              cols.push_back(product.GCID(c[k]));
-              vals.push_back(v[k]);
-              if (cols.back() == row)
-                {
-                  has_diagonal = true;
-                  vals.back()  = (v[k] > 0 ? v[k] * (1 + laplacian_shift) : 1.0);
-                }
-            }
-          if (!has_diagonal)
-            {
-              cols.push_back(row);
-              vals.push_back(1.0);
-            }
-          pressure_laplacian->InsertGlobalValues(row, cols.size(), vals.data(), cols.data());
-        }
-      pressure_laplacian->FillComplete(G->RowMap(), G->RowMap());
-      TrilinosWrappers::PreconditionAMG::AdditionalData pressure_data;
-      pressure_data.elliptic = true;
-      pressure_amg.initialize(*pressure_laplacian, pressure_data);
-      p_in.reinit(owned[pressure_block], comm);
-      p_out.reinit(owned[pressure_block], comm);
-    }
+    const auto    G = extract(pressure_block, {velocity_block});
+    Epetra_Vector inverse_mass(G->DomainMap());
+    const double *m = values(system->blocks.velocity_mass);
+    for (int i = 0; i < inverse_mass.MyLength(); ++i)
+      inverse_mass[i] = (m[i] > 0 ? 1.0 / m[i] : 0.0);
+    Epetra_CrsMatrix G_scaled(*G);
+    G_scaled.RightScale(inverse_mass);
+    Epetra_CrsMatrix product(Copy, G->RowMap(), 0);
+    int error = EpetraExt::MatrixMatrix::Multiply(G_scaled, false, *G, true, product);
+    AssertThrow(error == 0, ExcInternalError());
 
-    // The particle block: S_y = D − C S_λ⁻¹ B, column by column.
+    // The pressure level is in L's kernel, and a pinned pressure DoF has an empty row:
+    // a relative diagonal shift, and 1 on empty rows, keep AMG's coarse factorization
+    // regular. The shift goes in first; the product is summed into it.
+    Epetra_Vector diagonal(product.RowMap());
+    product.ExtractDiagonalCopy(diagonal);
+    pressure_laplacian = std::make_unique<Epetra_CrsMatrix>(Copy, product.RowMap(), 0);
+    for (int r = 0; r < diagonal.MyLength(); ++r)
+      {
+        int          row   = product.GRID(r);
+        const double shift = (diagonal[r] > 0 ? laplacian_shift * diagonal[r] : 1.0);
+        pressure_laplacian->InsertGlobalValues(row, 1, &shift, &row);
+      }
+    error = EpetraExt::MatrixMatrix::Add(product, false, 1.0, *pressure_laplacian, 1.0);
+    AssertThrow(error == 0, ExcInternalError());
+    pressure_laplacian->FillComplete(G->RowMap(), G->RowMap());
+    TrilinosWrappers::PreconditionAMG::AdditionalData pressure_data;
+    pressure_data.elliptic = true;
+    pressure_amg.initialize(*pressure_laplacian, pressure_data);
+  }
+
+  void BlockPreconditioner::initialize_particle_block()
+  {
+    // S_y = D − C S_λ⁻¹ B, column by column.
     const unsigned int m   = op->n_particle_unknowns();
     const unsigned int n_l = owned[multiplier_block].n_elements();
     Eigen::MatrixXd    S   = system->D;

@@ -99,6 +99,17 @@ namespace fdparticle
     std::unique_ptr<Epetra_CrsMatrix>
     extract(const unsigned int row_block, const std::vector<unsigned int> &col_blocks) const;
 
+    /// The parts of initialize(), one per block, in the order they must run (the particle
+    /// block uses the multiplier AMG):
+    /// the AMGs of K and A_λλ + A_λu, and A_uλ;
+    void initialize_velocity_and_multiplier();
+    /// the cell-local viscous term of S_p⁻¹;
+    void initialize_pressure_cells();
+    /// L and its AMG (Cahouet–Chabard's inertial term of S_p⁻¹);
+    void initialize_pressure_laplacian();
+    /// the LU of the particle unknowns' Schur complement D − C S_λ⁻¹ B.
+    void initialize_particle_block();
+
     /// The block-triangular approximation of J_w: dst = P_w⁻¹ src (pressure part 0).
     void vmult_rest(BlockVector &dst, const BlockVector &src) const;
     /// dst = J_w src (src's pressure part is 0; dst's is set to 0).
