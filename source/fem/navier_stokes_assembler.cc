@@ -121,18 +121,25 @@ namespace fdparticle
     NewtonSystem::Blocks &blocks         = system.blocks;
     const unsigned int    n_p            = blocks.pressure_dofs_per_cell;
     const bool            fluid_mass     = with_matrix && n_p > 0;
-    std::vector<unsigned int> pressure_local;
+    std::vector<unsigned int> pressure_local, velocity_local; // shape functions of p and u
     types::global_dof_index   first_pressure = 0; // this rank's first pressure DoF
     if (fluid_mass)
       {
         for (unsigned int i = 0; i < n; ++i)
-          if (fe.system_to_component_index(i).first == Introspection<dim>::pressure_component)
-            pressure_local.push_back(i);
+          {
+            const auto field = Introspection<dim>::field(fe.system_to_component_index(i).first);
+            if (field == Introspection<dim>::Field::pressure)
+              pressure_local.push_back(i);
+            else if (field == Introspection<dim>::Field::velocity)
+              velocity_local.push_back(i);
+          }
         const auto &range = blocks.range[Utilities::MPI::this_mpi_process(
           dof_handler.get_communicator())];
-        first_pressure = range[2];
-        blocks.pressure_fluid_mass.assign((range[3] - range[2]) * n_p, 0.0);
-        blocks.pressure_mass.assign((range[3] - range[2]) * n_p, 0.0);
+        first_pressure = range[NewtonSystem::Blocks::pressure];
+        const types::global_dof_index n_pressure =
+          range[NewtonSystem::Blocks::pressure + 1] - first_pressure;
+        blocks.pressure_fluid_mass.assign(n_pressure * n_p, 0.0);
+        blocks.pressure_mass.assign(n_pressure * n_p, 0.0);
         blocks.velocity_mass = TrilinosWrappers::MPI::Vector(system.r_fe); // zero here
       }
     Vector<double> local_velocity_mass(n);
@@ -216,11 +223,9 @@ namespace fdparticle
                     }
                 }
             local_velocity_mass = 0;
-            for (unsigned int i = 0; i < n; ++i)
-              if (Introspection<dim>::field(fe.system_to_component_index(i).first) ==
-                  Introspection<dim>::Field::velocity)
-                for (unsigned int q = 0; q < nq; ++q)
-                  local_velocity_mass[i] += fv.shape_value(i, q) * fv.shape_value(i, q) * fv.JxW(q);
+            for (const unsigned int i : velocity_local)
+              for (unsigned int q = 0; q < nq; ++q)
+                local_velocity_mass[i] += fv.shape_value(i, q) * fv.shape_value(i, q) * fv.JxW(q);
             constraints.distribute_local_to_global(local_velocity_mass, dof_indices,
                                                    blocks.velocity_mass);
           }

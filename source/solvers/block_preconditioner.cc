@@ -16,7 +16,9 @@ namespace fdparticle
 {
   namespace
   {
-    constexpr unsigned int velocity_block = 0, multiplier_block = 1, pressure_block = 2;
+    constexpr unsigned int velocity_block   = NewtonSystem::Blocks::velocity,
+                           multiplier_block = NewtonSystem::Blocks::multiplier,
+                           pressure_block   = NewtonSystem::Blocks::pressure;
 
     /// Local entries of a Trilinos vector (nullptr-safe for empty ones).
     double *values(TrilinosWrappers::MPI::Vector &v) { return v.trilinos_vector()[0]; }
@@ -99,9 +101,9 @@ namespace fdparticle
     AssertThrow(blocks.range.size() == Utilities::MPI::n_mpi_processes(comm) &&
                   blocks.pressure_dofs_per_cell > 0,
                 ExcMessage("The Newton system has no block layout for the iterative solver."));
-    owned.resize(3);
-    local_offset.assign(3, 0);
-    for (unsigned int b = 0; b < 3; ++b)
+    owned.resize(NewtonSystem::Blocks::n_blocks);
+    local_offset.assign(NewtonSystem::Blocks::n_blocks, 0);
+    for (unsigned int b = 0; b < NewtonSystem::Blocks::n_blocks; ++b)
       {
         owned[b] = IndexSet(blocks.size(b));
         owned[b].add_range(blocks.offset[rank][b],

@@ -18,7 +18,7 @@ namespace fdparticle
     Assert(it != range.begin(), ExcInternalError());
     const std::size_t r = (it - range.begin()) - 1;
     unsigned int      b = 0;
-    while (b < 2 && g >= range[r][b + 1])
+    while (b + 1 < n_blocks && g >= range[r][b + 1])
       ++b;
     return {b, offset[r][b] + (g - range[r][b])};
   }
@@ -31,7 +31,7 @@ namespace fdparticle
 
   IndexSet NewtonSystem::Blocks::global_dofs(const unsigned int b) const
   {
-    IndexSet dofs(range.empty() ? 0 : range.back()[3]);
+    IndexSet dofs(range.empty() ? 0 : range.back()[n_blocks]);
     for (const auto &r : range)
       dofs.add_range(r[b], r[b + 1]);
     dofs.compress();

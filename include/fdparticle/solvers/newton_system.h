@@ -54,15 +54,24 @@ namespace fdparticle
     /// unknowns change (set_blocks) and each step (the scales). A direct solver ignores it.
     struct Blocks
     {
+      /// The blocks in the order each rank numbers them (Introspection's order of fields).
+      enum Block : unsigned int
+      {
+        velocity,
+        multiplier,
+        pressure,
+        n_blocks
+      };
+
       /// Each rank owns one contiguous range of DoFs and numbers it block by block,
       /// u | λ | p: rank r's DoFs of block b are [range[r][b], range[r][b + 1]). Counted
       /// over the ranks in order, block b's DoFs have a numbering of their own (the
       /// "block numbering", 0 … size(b) − 1). Each rank's velocity DoF i and multiplier DoF
       /// i sit at the same node and component, so the λ–u block of A is square in the
       /// block numbering (doc/method.md §8).
-      std::vector<std::array<types::global_dof_index, 4>> range;
+      std::vector<std::array<types::global_dof_index, n_blocks + 1>> range;
       /// offset[r][b]: block number of rank r's first DoF of block b.
-      std::vector<std::array<types::global_dof_index, 3>> offset;
+      std::vector<std::array<types::global_dof_index, n_blocks>> offset;
 
       /// Block and block number of the global DoF g.
       std::pair<unsigned int, types::global_dof_index> locate(const types::global_dof_index g) const;

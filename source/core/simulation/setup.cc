@@ -52,8 +52,8 @@ namespace fdparticle
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     // Owned velocity DoFs; λ DoFs of owned and ghost cells (the constraints need them on
     // every rank that sees them).
-    velocity_dofs   = system.blocks.global_dofs(0) & owned_dofs;
-    multiplier_dofs = system.blocks.global_dofs(1) & relevant_dofs;
+    velocity_dofs   = system.blocks.global_dofs(NewtonSystem::Blocks::velocity) & owned_dofs;
+    multiplier_dofs = system.blocks.global_dofs(NewtonSystem::Blocks::multiplier) & relevant_dofs;
 
     static_constraints.clear();
     static_constraints.reinit(relevant_dofs);
@@ -106,6 +106,10 @@ namespace fdparticle
     // rank sit at the same node and component.
     const IndexSet                 owned = dof_handler.locally_owned_dofs();
     Assert(owned.is_contiguous(), ExcInternalError());
+    using Blocks = NewtonSystem::Blocks;
+    // A DoF's block is its field: both list u, λ, p in this order.
+    static_assert(static_cast<unsigned int>(Introspection<dim>::Field::pressure) == Blocks::pressure,
+                  "the blocks must follow the order of the fields");
     std::vector<unsigned int>      block(owned.n_elements(), 0);
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -117,24 +121,25 @@ namespace fdparticle
               block[owned.index_within_set(dofs[i])] =
                 static_cast<unsigned int>(Introspection<dim>::field(fe.system_to_component_index(i).first));
         }
-    std::array<types::global_dof_index, 3> count{}; // DoFs of u, λ, p
+    std::array<types::global_dof_index, Blocks::n_blocks> count{};
     for (const unsigned int b : block)
       ++count[b];
-    const types::global_dof_index first = owned.n_elements() > 0 ? *owned.begin() : 0;
-    std::array<types::global_dof_index, 4> range{{first, first + count[0],
-                                                 first + count[0] + count[1],
-                                                 first + owned.n_elements()}};
+    std::array<types::global_dof_index, Blocks::n_blocks + 1> range{};
+    range[0] = owned.n_elements() > 0 ? *owned.begin() : 0;
+    for (unsigned int b = 0; b < Blocks::n_blocks; ++b)
+      range[b + 1] = range[b] + count[b];
     std::vector<types::global_dof_index> new_numbers(owned.n_elements());
-    std::array<types::global_dof_index, 3> next{{range[0], range[1], range[2]}};
+    std::array<types::global_dof_index, Blocks::n_blocks> next{};
+    std::copy(range.begin(), range.begin() + Blocks::n_blocks, next.begin());
     for (unsigned int k = 0; k < block.size(); ++k)
       new_numbers[k] = next[block[k]]++;
     dof_handler.renumber_dofs(new_numbers);
 
-    NewtonSystem::Blocks &b = system.blocks;
+    Blocks &b = system.blocks;
     b.range = Utilities::MPI::all_gather(comm, range);
     b.offset.assign(b.range.size(), {});
     for (std::size_t r = 1; r < b.range.size(); ++r)
-      for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int k = 0; k < Blocks::n_blocks; ++k)
         b.offset[r][k] = b.offset[r - 1][k] + (b.range[r - 1][k + 1] - b.range[r - 1][k]);
     DoFTools::extract_constant_modes(dof_handler,
                                      fe.component_mask(Introspection<dim>::velocities()),
@@ -142,8 +147,8 @@ namespace fdparticle
 
     // The block solver reads the pairing matrix off the λ–u block of A (see above); it
     // would precondition with nonsense if the pairing of the numbers broke, so check it.
-    const types::global_dof_index shift = range[1] - range[0];
-    AssertThrow(range[2] - range[1] == shift, ExcInternalError());
+    const types::global_dof_index shift = range[Blocks::multiplier] - range[Blocks::velocity];
+    AssertThrow(range[Blocks::pressure] - range[Blocks::multiplier] == shift, ExcInternalError());
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -152,7 +157,7 @@ namespace fdparticle
             {
               const auto [component, index] = fe.system_to_component_index(i);
               if (Introspection<dim>::field(component) != Introspection<dim>::Field::velocity ||
-                  dofs[i] < range[0] || dofs[i] >= range[1])
+                  dofs[i] < range[Blocks::velocity] || dofs[i] >= range[Blocks::multiplier])
                 continue;
               const unsigned int j = fe.component_to_system_index(component + dim, index);
               AssertThrow(dofs[j] == dofs[i] + shift, ExcInternalError());
