@@ -72,7 +72,9 @@ namespace fdparticle
               {"time_step_reductions", double(s.time_step_reductions)},
               {"mean_vx", s.mean_velocity[0]},
               {"mean_vy", s.mean_velocity[1]},
-              {"mean_vz", s.mean_velocity[2]}};
+              {"mean_vz", s.mean_velocity[2]},
+              {"contacts", double(s.contacts)},
+              {"min_gap", s.min_gap}};
     }
 
     /// One row of particles.csv per particle: in 2D z, the in-plane ω and torque are 0.

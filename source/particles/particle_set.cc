@@ -1,4 +1,5 @@
 #include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/pair_search.h>
 #include <fdparticle/particles/particle_set.h>
 
 #include <iomanip>
@@ -136,12 +137,18 @@ namespace fdparticle
                                            " overlaps a wall of the box") +
                                  when + (time == 0.0 ? "." : " (see subsection Wall repulsion).")));
         }
-    for (unsigned int i = 0; i < particles.size(); ++i)
-      for (unsigned int j = i + 1; j < particles.size(); ++j)
-        AssertThrow(particles[i].position.distance(particles[j].position) >
-                      particles[i].radius + particles[j].radius,
-                    ExcMessage("Particles " + std::to_string(i + 1) + " and " +
-                               std::to_string(j + 1) + " overlap" + when + "."));
+    std::vector<Point<dim>> x;
+    std::vector<double>     r;
+    for (const Particle<dim> &p : particles)
+      {
+        x.push_back(p.position);
+        r.push_back(p.radius);
+      }
+    const auto overlaps = PairSearch<dim>(domain).pairs(x, r, 0.0);
+    AssertThrow(overlaps.empty(),
+                ExcMessage("Particles " + std::to_string(overlaps[0].i + 1) + " and " +
+                           std::to_string(overlaps[0].j + 1) + " overlap" + when +
+                           (time == 0.0 ? "." : " (see subsection Collisions).")));
   }
 
   template <int dim>

@@ -62,7 +62,8 @@ namespace fdparticle
     stiffness.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
       stiffness[k] = (stiffness_entry < 0 ?
-                        100 * std::abs(particles[k].density - fluid.density) *
+                        RepulsionLaw::stiffness_per_weight *
+                          std::abs(particles[k].density - fluid.density) *
                           particles[k].volume() * fluid.gravity.norm() :
                         stiffness_entry);
   }
@@ -98,23 +99,23 @@ namespace fdparticle
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         Particle<dim> &P = particles[k];
-        P.contact_force = Tensor<1, dim>();
         if (P.first_unknown == numbers::invalid_unsigned_int)
           continue;
-        const Point<dim> X = P.position_after_step(c);
+        const RepulsionLaw law{rho, stiffness[k]};
+        const Point<dim>   X = P.position_after_step(c);
         for (const Contact &w : contacts(P, X))
           {
-            const double s = 1 - w.gap / rho;
-            P.contact_force += stiffness[k] * s * s * w.normal;
-            // dF/dX = −2K s/ρ n nᵀ (the gap grows along n), and dX/dV = 1/c0.
+            const Tensor<1, dim> F = law.force(w.gap) * w.normal;
+            P.contact_force += F;
+            for (unsigned int d = 0; d < dim; ++d)
+              r_p[P.first_unknown + d] -= F[d];
+            // dF/dX = F'(g) n nᵀ (the gap grows along n), and dX/dV = 1/c0.
             if (D != nullptr)
               for (unsigned int i = 0; i < dim; ++i)
                 for (unsigned int j = 0; j < dim; ++j)
-                  (*D)(P.first_unknown + i, P.first_unknown + j) +=
-                    2 * stiffness[k] * s / rho * w.normal[i] * w.normal[j] / c[0];
+                  (*D)(P.first_unknown + i, P.first_unknown + j) -=
+                    law.derivative(w.gap) * w.normal[i] * w.normal[j] / c[0];
           }
-        for (unsigned int d = 0; d < dim; ++d)
-          r_p[P.first_unknown + d] -= P.contact_force[d];
       }
   }
 

@@ -21,6 +21,7 @@
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/io/smoothness_meter.h>
 #include <fdparticle/core/time_stepper.h>
+#include <fdparticle/particles/collisions.h>
 #include <fdparticle/particles/wall_repulsion.h>
 #include <fdparticle/solvers/linear_solver.h>
 #include <fdparticle/solvers/newton_solver.h>
@@ -110,6 +111,7 @@ namespace fdparticle
     SmoothnessMeter<dim>   smoothness;
     Checkpointer<dim>      checkpointer;
     WallRepulsion<dim>     repulsion;
+    Collisions<dim>        collisions;
     unsigned int           base_level = 0;
     NewtonSystem                  system;
     /// Declared after the system it refers to, so that it is destroyed first.

@@ -37,6 +37,10 @@ namespace fdparticle
     unsigned int time_step_reductions = 0;
     /// Volume average of the fluid velocity over the box (superficial velocity).
     Tensor<1, 3> mean_velocity;
+    /// Pairs of particles within the collision range, and the smallest gap between two
+    /// particles, capped at a diameter (Collisions::statistics).
+    unsigned int contacts = 0;
+    double       min_gap  = 0;
   };
 
   /**

@@ -59,7 +59,7 @@ namespace fdparticle
     /// Hydrodynamic force (buoyancy included) and torque of the last step.
     Tensor<1, dim> force;
     Tensor<1, 3>   torque;
-    /// Wall repulsion of the last step (WallRepulsion), not part of 'force'.
+    /// Contact force of the last step (WallRepulsion and Collisions), not part of 'force'.
     Tensor<1, dim> contact_force;
 
     /// Offset of (V, ω) in the particle block; numbers::invalid_unsigned_int if not free.
@@ -146,8 +146,11 @@ namespace fdparticle
 
     /**
      * Throw a one-sentence error if a ball touches a wall, crosses a periodic boundary or
-     * overlaps another ball: fdparticle has no contact model yet, and past that point the
-     * results would be meaningless. Called after each step (and by parse_parameters).
+     * overlaps another ball (found by PairSearch, O(N)): the fictitious-domain method
+     * cannot represent overlapping balls, and past that point the results would be
+     * meaningless. The repulsion forces (WallRepulsion, Collisions) keep the balls apart;
+     * this is the stop when they are off or too weak. Called after each step (the time
+     * loop then retries with a smaller step) and by parse_parameters.
      */
     void check_positions(const Domain<dim> &domain, const double time) const;
 

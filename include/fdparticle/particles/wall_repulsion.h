@@ -7,6 +7,7 @@
 #include <fdparticle/fem/domain.h>
 #include <fdparticle/core/fluid.h>
 #include <fdparticle/particles/particle_set.h>
+#include <fdparticle/particles/repulsion_law.h>
 
 #include <Eigen/Dense>
 
@@ -19,14 +20,10 @@ namespace fdparticle
 
   /**
    * Short-range particle–wall repulsion (subsection Wall repulsion), after Glowinski et al.,
-   * J. Comput. Phys. 169 (2001) 363–426, eq. (2.7): a force normal to each wall that grows
-   * quadratically as the gap g between the ball and the wall shrinks below the range ρ,
-   *
-   *   F = K (1 − g/ρ)² n   for g < ρ,   0 otherwise,
-   *
-   * n the wall's inward normal. Glowinski writes (1/ε)(ρ − g)²; K = ρ²/ε is the force at
-   * contact, so the parameters read as a length and a force. A settling ball rests where F
-   * equals its apparent weight W: at g = ρ (1 − √(W/K)).
+   * J. Comput. Phys. 169 (2001) 363–426, eq. (2.7): a force F(g) n normal to each wall, F
+   * the RepulsionLaw of the gap g between the ball and the wall, n the wall's inward
+   * normal. A settling ball rests where F equals its apparent weight W: at
+   * g = ρ (1 − √(W/K)).
    *
    * The force is evaluated at the end-of-step position X^{n+1}(V) of the BDF formula
    * ((F6) as implemented, doc/method.md §2), so it is implicit: its derivative enters the
@@ -50,7 +47,7 @@ namespace fdparticle
     /**
      * Subtract F(X^{n+1}(V)) from the force-balance rows of the free particles (their
      * residual is ρ-weighted acceleration + λ-force − F), and −∂F/∂V from the diagonal
-     * block. Also stores F in each particle's contact_force for output.
+     * block. Also adds F to each particle's contact_force for output.
      */
     void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
                               Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;

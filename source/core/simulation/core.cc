@@ -64,6 +64,7 @@ namespace fdparticle
     ParticleRefinement<3>::declare_parameters(prm);
     Checkpointer<3>::declare_parameters(prm);
     WallRepulsion<3>::declare_parameters(prm);
+    Collisions<3>::declare_parameters(prm);
     declare_simulation_parameters(prm);
   }
 
@@ -122,6 +123,7 @@ namespace fdparticle
     }
     checkpointer.parse_parameters(prm, output.directory());
     repulsion.parse_parameters(prm);
+    collisions.parse_parameters(prm);
     prm.enter_subsection("Initial conditions");
     hydrostatic_start = (prm.get("Pressure") == "hydrostatic");
     prm.leave_subsection();
@@ -157,8 +159,11 @@ namespace fdparticle
       resume();
     else
       start();
-    repulsion.initialize(domain, fluid, particles,
-                         domain.base_cell_size() / std::pow(2.0, refinement.levels()));
+    {
+      const double finest_cell_size = domain.base_cell_size() / std::pow(2.0, refinement.levels());
+      repulsion.initialize(domain, fluid, particles, finest_cell_size);
+      collisions.initialize(domain, fluid, particles, finest_cell_size);
+    }
 
     pcout << "fdparticle: " << dim << "D, " << triangulation.n_global_active_cells()
           << " cells, " << dof_handler.n_dofs() << " finite-element DoFs + "
@@ -187,6 +192,7 @@ namespace fdparticle
         stats.dofs = dof_handler.n_dofs() + particles.n_unknowns();
         stats.max_velocity = max_velocity();
         field_statistics(stats);
+        collisions.statistics(particles, stats.contacts, stats.min_gap);
         if (refinement.enabled())
           stats.coarse_cut_cells = refinement.coarse_cut_cells(triangulation, particles, base_level);
         write_output(output.vtu_due(time.step_number()));

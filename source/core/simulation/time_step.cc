@@ -49,7 +49,7 @@ namespace fdparticle
         if (failure.empty())
           {
             // Positions are checked before the step is accepted. A ball that went through
-            // the wall repulsion's range in one step (a fast particle, a long step) is a
+            // the wall repulsion's or the collision range in one step (a fast particle, a long step) is a
             // failed step like a Newton failure: with a shorter step the implicit repulsion
             // acts in time. Only when Δt cannot be halved further does the run stop.
             particles.finish_step(time);
@@ -99,9 +99,13 @@ namespace fdparticle
       TimerOutput::Scope t(*timer, with_jacobian ? "assemble system" : "assemble residual");
       last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
                                           update_constraints, with_jacobian, system);
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        particles[k].contact_force = Tensor<1, dim>();
       if (repulsion.enabled())
         repulsion.add_to_particle_rows(particles, c, system.r_p,
                                        with_jacobian ? &system.D : nullptr);
+      collisions.add_to_particle_rows(particles, c, system.r_p,
+                                      with_jacobian ? &system.D : nullptr);
       if (with_jacobian)
         linear_solver->operator_changed();
       return system.residual_norm();
