@@ -63,6 +63,22 @@ namespace fdparticle
       return value;
     }
 
+    std::optional<double> get_auto_or_number(const ParameterHandler &prm,
+                                             const std::string &name,
+                                             const std::string &entry_path,
+                                             const Zero zero)
+    {
+      const std::string text = trim(prm.get(name));
+      if (text == "auto")
+        return {};
+      const double value = to_double(text, entry_path);
+      AssertThrow(zero == Zero::allowed ? value >= 0 : value > 0,
+                  ExcMessage("Parameter '" + entry_path + "' must be " +
+                             (zero == Zero::allowed ? "zero or positive" : "positive") +
+                             " or 'auto', got " + text + "."));
+      return value;
+    }
+
     template <int dim>
     Tensor<1, dim> to_tensor(const std::string &text, const std::string &entry)
     {

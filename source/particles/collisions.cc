@@ -32,24 +32,10 @@ namespace fdparticle
     using namespace ParameterTools;
     prm.enter_subsection("Collisions");
     contact_model = (prm.get("Model") == "repulsion" ? Model::repulsion : Model::none);
-    const std::string range_text = trim(prm.get("Range")), stiffness_text = trim(prm.get("Stiffness"));
+    range_entry = get_auto_or_number(prm, "Range", "Collisions/Range", Zero::refused);
+    stiffness_entry =
+      get_auto_or_number(prm, "Stiffness", "Collisions/Stiffness", Zero::refused);
     prm.leave_subsection();
-    range_entry = -1;
-    if (range_text != "auto")
-      {
-        range_entry = to_double(range_text, "Collisions/Range");
-        AssertThrow(range_entry > 0,
-                    ExcMessage("Parameter 'Collisions/Range' must be positive or 'auto', got " +
-                               range_text + "."));
-      }
-    stiffness_entry = -1;
-    if (stiffness_text != "auto")
-      {
-        stiffness_entry = to_double(stiffness_text, "Collisions/Stiffness");
-        AssertThrow(stiffness_entry > 0,
-                    ExcMessage("Parameter 'Collisions/Stiffness' must be positive or 'auto', "
-                               "got " + stiffness_text + "."));
-      }
   }
 
   template <int dim>
@@ -57,13 +43,13 @@ namespace fdparticle
                                    const ParticleSet<dim> &particles,
                                    const double finest_cell_size)
   {
-    range = (range_entry < 0 ? finest_cell_size : range_entry);
+    range = range_entry.value_or(finest_cell_size);
     search = std::make_unique<PairSearch<dim>>(domain);
     weight.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
       weight[k] = std::abs(particles[k].density - fluid.density) * particles[k].volume() *
                   fluid.gravity.norm();
-    if (contact_model == Model::repulsion && stiffness_entry < 0)
+    if (contact_model == Model::repulsion && !stiffness_entry)
       for (unsigned int i = 0; i < particles.size(); ++i)
         AssertThrow(weight[i] > 0 || particles.size() == 1 ||
                       particles[i].first_unknown == numbers::invalid_unsigned_int,
@@ -76,9 +62,8 @@ namespace fdparticle
   template <int dim>
   RepulsionLaw Collisions<dim>::law(const unsigned int i, const unsigned int j) const
   {
-    return RepulsionLaw{range, stiffness_entry < 0 ? RepulsionLaw::stiffness_per_weight *
-                                                       std::max(weight[i], weight[j]) :
-                                                     stiffness_entry};
+    return RepulsionLaw{range, stiffness_entry.value_or(RepulsionLaw::stiffness_per_weight *
+                                                        std::max(weight[i], weight[j]))};
   }
 
   namespace

@@ -29,24 +29,10 @@ namespace fdparticle
     using namespace ParameterTools;
     prm.enter_subsection("Wall repulsion");
     on = prm.get_bool("Enabled");
-    const std::string range = trim(prm.get("Range")), stiffness_text = trim(prm.get("Stiffness"));
+    range_entry = get_auto_or_number(prm, "Range", "Wall repulsion/Range", Zero::refused);
+    stiffness_entry =
+      get_auto_or_number(prm, "Stiffness", "Wall repulsion/Stiffness", Zero::allowed);
     prm.leave_subsection();
-    range_entry = -1;
-    if (range != "auto")
-      {
-        range_entry = to_double(range, "Wall repulsion/Range");
-        AssertThrow(range_entry > 0,
-                    ExcMessage("Parameter 'Wall repulsion/Range' must be positive or 'auto', got " +
-                               range + "."));
-      }
-    stiffness_entry = -1;
-    if (stiffness_text != "auto")
-      {
-        stiffness_entry = to_double(stiffness_text, "Wall repulsion/Stiffness");
-        AssertThrow(stiffness_entry >= 0,
-                    ExcMessage("Parameter 'Wall repulsion/Stiffness' must not be negative, got " +
-                               stiffness_text + "."));
-      }
   }
 
   template <int dim>
@@ -58,14 +44,12 @@ namespace fdparticle
     upper = domain.upper_corner();
     for (unsigned int d = 0; d < dim; ++d)
       wall_direction[d] = !domain.is_periodic(d);
-    rho = (range_entry < 0 ? finest_cell_size : range_entry);
+    rho = range_entry.value_or(finest_cell_size);
     stiffness.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
-      stiffness[k] = (stiffness_entry < 0 ?
-                        RepulsionLaw::stiffness_per_weight *
-                          std::abs(particles[k].density - fluid.density) *
-                          particles[k].volume() * fluid.gravity.norm() :
-                        stiffness_entry);
+      stiffness[k] = stiffness_entry.value_or(RepulsionLaw::stiffness_per_weight *
+                                              std::abs(particles[k].density - fluid.density) *
+                                              particles[k].volume() * fluid.gravity.norm());
   }
 
   template <int dim>

@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -43,6 +44,20 @@ namespace fdparticle
     /// 'entry_path' (Subsection/Name) names it in the error message.
     double get_non_negative(const ParameterHandler &prm, const std::string &name,
                             const std::string &entry_path);
+
+    /// Whether a number read by get_auto_or_number may be zero.
+    enum class Zero
+    {
+      allowed,
+      refused
+    };
+
+    /// The entry 'name' of the current subsection of prm: 'auto' (an empty optional: the
+    /// reading class computes the value) or a number > 0 (>= 0 if zero is allowed).
+    std::optional<double> get_auto_or_number(const ParameterHandler &prm,
+                                             const std::string &name,
+                                             const std::string &entry_path,
+                                             const Zero zero);
 
     /// A comma-separated vector of exactly dim numbers.
     template <int dim>

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace fdparticle
@@ -71,8 +72,8 @@ namespace fdparticle
 
   private:
     Model  contact_model = Model::none;
-    /// The entries as read; a negative value stands for 'auto'.
-    double range_entry = -1, stiffness_entry = -1;
+    /// The entries as read; empty for 'auto'.
+    std::optional<double> range_entry, stiffness_entry;
     double range = 0;
     /// Apparent weight of each ball, |ρ_k − ρ_f| |P_k| |g|.
     std::vector<double>              weight;

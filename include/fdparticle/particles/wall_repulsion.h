@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace fdparticle
@@ -62,8 +63,8 @@ namespace fdparticle
     std::vector<Contact> contacts(const Particle<dim> &P, const Point<dim> &X) const;
 
     bool                  on = true;
-    /// The entries as read; a negative value stands for 'auto'.
-    double                range_entry = -1, stiffness_entry = -1;
+    /// The entries as read; empty for 'auto'.
+    std::optional<double> range_entry, stiffness_entry;
     double                rho = 0;
     std::vector<double>   stiffness; // K per particle
     Point<dim>            lower, upper;
