@@ -77,7 +77,8 @@ namespace fdparticle
               {"min_gap", s.min_gap}};
     }
 
-    /// One row of particles.csv per particle: in 2D z, the in-plane ω and torque are 0.
+    /// One row of particles.csv per particle: in 2D z, the in-plane ω and torque are 0. The
+    /// radius comes last: random and file particles differ in size.
     template <int dim>
     Columns particle_columns(const double time, const Particle<dim> &P)
     {
@@ -89,6 +90,7 @@ namespace fdparticle
       for (const auto &[prefix, values] : vectors)
         for (unsigned int d = 0; d < 3; ++d)
           columns.emplace_back(prefix + "xyz"[d], values[d]);
+      columns.emplace_back("radius", P.radius);
       return columns;
     }
 

@@ -1,5 +1,7 @@
 #include <fdparticle/core/parameter_tools.h>
 #include <fdparticle/particles/pair_search.h>
+#include <fdparticle/particles/particle_file.h>
+#include <fdparticle/particles/random_packing.h>
 #include <fdparticle/particles/particle_set.h>
 
 #include <iomanip>
@@ -18,7 +20,14 @@ namespace fdparticle
                         "(2D: 'x, y : ...'), motion = free (default: force and torque "
                         "balance), fixed, or 'prescribed : vx, vy, vz [: wx, wy, wz]' "
                         "(constant velocity and angular velocity; 2D: 'vx, vy [: wz]'). "
-                        "Empty: plain (Navier-)Stokes flow.");
+                        "Empty: plain (Navier-)Stokes flow, unless Particle file or Random "
+                        "particles give particles.");
+      prm.declare_entry("Particle file", "", Patterns::Anything(),
+                        "CSV file of more particles, one per line: 'x, y[, z], radius, "
+                        "density[, motion[, vx, vy[, vz][, angular velocity]]]' (motion as "
+                        "in Particles); '#' comments and a header line are skipped. A "
+                        "relative path starts in the directory fdparticle runs in.");
+      RandomPacking<dim>::declare_parameters(prm);
       prm.declare_entry("Angular velocity closure", "torque balance",
                         Patterns::Selection("torque balance|kinematic"),
                         "torque balance: (rho_k - rho_f) J dw/dt + <lambda, theta x r> = 0; "
@@ -27,11 +36,72 @@ namespace fdparticle
     prm.leave_subsection();
   }
 
+  namespace
+  {
+    /// A particle from the fields of one entry (a Particles/Particles entry or a line of
+    /// the particle file): centre, radius, density[, motion[, velocity[, angular
+    /// velocity]]]; 'name' says where the entry came from in error messages.
+    template <int dim>
+    Particle<dim> make_particle(const std::vector<std::string> &fields, const std::string &name,
+                                const std::string &form)
+    {
+      using namespace ParameterTools;
+      Particle<dim> p;
+      p.position = Point<dim>(to_tensor<dim>(fields[0], name + " centre"));
+      p.radius = to_double(fields[1], name + " radius");
+      p.density = to_double(fields[2], name + " density");
+      AssertThrow(p.radius > 0, ExcMessage("Parameter '" + name +
+                                           "': the radius must be positive, got " +
+                                           fields[1] + "."));
+      AssertThrow(p.density > 0, ExcMessage("Parameter '" + name +
+                                            "': the density must be positive, got " +
+                                            fields[2] + "."));
+      if (fields.size() >= 4)
+        {
+          const std::string &motion = fields[3];
+          AssertThrow(motion == "free" || motion == "fixed" || motion == "prescribed",
+                      ExcMessage("Parameter '" + name + "': motion '" + motion +
+                                 "' is not 'free', 'fixed' or 'prescribed'."));
+          AssertThrow((motion == "prescribed") == (fields.size() >= 5),
+                      ExcMessage("Parameter '" + name + "': " +
+                                 (motion == "prescribed" ?
+                                    "'prescribed' needs a velocity after it" :
+                                    "only 'prescribed' takes a velocity") +
+                                 "; the form is " + form + "."));
+          p.motion = (motion == "fixed"      ? ParticleMotion::fixed :
+                      motion == "prescribed" ? ParticleMotion::prescribed :
+                                               ParticleMotion::free);
+        }
+      if (p.motion == ParticleMotion::prescribed)
+        {
+          // Given (V, ω) are held in the velocity histories, so the BDF formula of
+          // finish_step() moves the ball with V exactly (constant V) and the assembler
+          // sees them as it sees a solved-for velocity.
+          p.velocity = to_tensor<dim>(fields[4], name + " velocity");
+          if (fields.size() == 6)
+            {
+              const Tensor<1, RigidBody<dim>::n_rotations> w =
+                to_tensor<RigidBody<dim>::n_rotations>(fields[5], name + " angular velocity");
+              for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
+                p.omega[RigidBody<dim>::rotation_component(j)] = w[j];
+            }
+          p.velocity_old = p.velocity_old2 = p.velocity;
+          p.omega_old = p.omega_old2 = p.omega;
+        }
+      p.position_old = p.position;
+      p.geometry_center = p.position;
+      return p;
+    }
+  } // namespace
+
   template <int dim>
-  void ParticleSet<dim>::parse_parameters(ParameterHandler &prm, const Domain<dim> &domain)
+  void ParticleSet<dim>::parse_parameters(ParameterHandler &prm, const Domain<dim> &domain,
+                                          const MPI_Comm comm)
   {
     using namespace ParameterTools;
     particles.clear();
+    std::string       file;
+    RandomPacking<dim> random;
     prm.enter_subsection("Particles");
     {
       angular_closure = (prm.get("Angular velocity closure") == "kinematic" ?
@@ -52,56 +122,31 @@ namespace fdparticle
             AssertThrow(fields.size() >= 3 && fields.size() <= 6,
                         ExcMessage("Parameter '" + name + "': '" + entry +
                                    "' is not of the form " + form + "."));
-            Particle<dim> p;
-            p.id = particles.size();
-            p.position = Point<dim>(to_tensor<dim>(fields[0], name + " centre"));
-            p.radius = to_double(fields[1], name + " radius");
-            p.density = to_double(fields[2], name + " density");
-            AssertThrow(p.radius > 0, ExcMessage("Parameter '" + name +
-                                                 "': the radius must be positive, got " +
-                                                 fields[1] + "."));
-            AssertThrow(p.density > 0, ExcMessage("Parameter '" + name +
-                                                  "': the density must be positive, got " +
-                                                  fields[2] + "."));
-            if (fields.size() >= 4)
-              {
-                const std::string &motion = fields[3];
-                AssertThrow(motion == "free" || motion == "fixed" || motion == "prescribed",
-                            ExcMessage("Parameter '" + name + "': motion '" + motion +
-                                       "' is not 'free', 'fixed' or 'prescribed'."));
-                AssertThrow((motion == "prescribed") == (fields.size() >= 5),
-                            ExcMessage("Parameter '" + name + "': '" + entry + "': " +
-                                       (motion == "prescribed" ?
-                                          "'prescribed' needs a velocity after it" :
-                                          "only 'prescribed' takes a velocity") +
-                                       "; the form is " + form + "."));
-                p.motion = (motion == "fixed"      ? ParticleMotion::fixed :
-                            motion == "prescribed" ? ParticleMotion::prescribed :
-                                                     ParticleMotion::free);
-              }
-            if (p.motion == ParticleMotion::prescribed)
-              {
-                // Given (V, ω) are held in the velocity histories, so the BDF formula of
-                // finish_step() moves the ball with V exactly (constant V) and the
-                // assembler sees them as it sees a solved-for velocity.
-                p.velocity = to_tensor<dim>(fields[4], name + " velocity");
-                if (fields.size() == 6)
-                  {
-                    const Tensor<1, RigidBody<dim>::n_rotations> w =
-                      to_tensor<RigidBody<dim>::n_rotations>(fields[5],
-                                                             name + " angular velocity");
-                    for (unsigned int j = 0; j < RigidBody<dim>::n_rotations; ++j)
-                      p.omega[RigidBody<dim>::rotation_component(j)] = w[j];
-                  }
-                p.velocity_old = p.velocity_old2 = p.velocity;
-                p.omega_old = p.omega_old2 = p.omega;
-              }
-            p.position_old = p.position;
-            p.geometry_center = p.position;
-            particles.push_back(p);
+            particles.push_back(make_particle<dim>(fields, name, form));
           }
+      file = trim(prm.get("Particle file"));
+      random.parse_parameters(prm, domain);
     }
     prm.leave_subsection();
+
+    if (!file.empty())
+      for (const auto &entry : ParticleFile<dim>::read(file, comm))
+        particles.push_back(make_particle<dim>(entry.fields, entry.name,
+                                               "'" + ParticleFile<dim>::line_form() + "'"));
+    // Random balls avoid the listed ones; they are checked with them below.
+    std::vector<typename RandomPacking<dim>::Ball> listed;
+    for (const Particle<dim> &p : particles)
+      listed.push_back({p.position, p.radius});
+    for (const auto &ball : random.place(listed))
+      {
+        Particle<dim> p;
+        p.position = p.position_old = p.geometry_center = ball.center;
+        p.radius = ball.radius;
+        p.density = random.density();
+        particles.push_back(p);
+      }
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      particles[k].id = k;
 
     check_positions(domain, 0.0);
 

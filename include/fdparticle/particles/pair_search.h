@@ -14,12 +14,12 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * The pairs of balls whose surfaces are closer than a given reach, found with a cell
-   * list: the box is cut into bins at least as wide as the largest centre distance that
-   * can be within reach, every ball is sorted into its bin, and a ball is compared only
-   * with the balls of its own and the adjacent bins. That is O(N) work for N balls spread
-   * over the box, instead of the N²/2 comparisons of all pairs. In a periodic direction
-   * the bins wrap around and the distance is to the nearest periodic image.
+   * The pairs of balls whose surfaces are closer than a given reach, found with a
+   * CellList: the bins are at least as wide as the largest centre distance that can be
+   * within reach, so a ball is compared only with the balls of its own and the adjacent
+   * bins. That is O(N) work for N balls spread over the box, instead of the N²/2
+   * comparisons of all pairs. In a periodic direction the distance is to the nearest
+   * periodic image.
    */
   template <int dim>
   class PairSearch
@@ -41,9 +41,7 @@ namespace fdparticle
                             const double reach) const;
 
   private:
-    Point<dim>            lower;
-    Tensor<1, dim>        length;
-    std::array<bool, dim> periodic{};
+    Domain<dim> domain;
   };
 } // namespace fdparticle
 

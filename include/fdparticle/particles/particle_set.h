@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -122,8 +123,11 @@ namespace fdparticle
      */
     static constexpr double min_radius_in_cells = 0.1;
 
-    /// Reads the list and checks it against the box: inside, off the walls, no overlaps.
-    void        parse_parameters(ParameterHandler &prm, const Domain<dim> &domain);
+    /// Reads the particles (the Particles list, then the Particle file, then the Random
+    /// particles) and checks them against the box: inside, off the walls, no overlaps.
+    /// The file is read on rank 0 of comm and broadcast.
+    void parse_parameters(ParameterHandler &prm, const Domain<dim> &domain,
+                          const MPI_Comm comm = MPI_COMM_SELF);
 
     unsigned int              size() const { return particles.size(); }
     Particle<dim> &           operator[](const unsigned int k) { return particles[k]; }

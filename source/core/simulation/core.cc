@@ -82,7 +82,7 @@ namespace fdparticle
   {
     domain.parse_parameters(prm);
     fluid.parse_parameters(prm);
-    particles.parse_parameters(prm, domain);
+    particles.parse_parameters(prm, domain, comm);
     time.parse_parameters(prm);
     quadrature.parse_parameters(prm);
     assembler.parse_parameters(prm);

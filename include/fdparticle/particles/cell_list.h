@@ -1,0 +1,92 @@
+#ifndef fdparticle_particles_cell_list_h
+#define fdparticle_particles_cell_list_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <fdparticle/fem/domain.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * Numbered points sorted into the bins of a regular grid over the box, for neighbour
+   * queries in O(1) per point: the box is cut into bins at least as wide as the largest
+   * distance asked about, so every point within that distance of x lies in the bin of x
+   * or in an adjacent one. In a periodic direction the bins wrap around and distances are
+   * to the nearest periodic image. Used by PairSearch and RandomPacking.
+   */
+  template <int dim>
+  class CellList
+  {
+  public:
+    /// Bins at least 'width' wide (one bin across a direction shorter than that).
+    CellList(const Domain<dim> &domain, const double width);
+
+    /// Put point number k, at x, into its bin.
+    void insert(const unsigned int k, const Point<dim> &x);
+
+    /// Call f(k) for every point k in the bin of x and in the adjacent bins, each once.
+    template <typename Function>
+    void for_each_near(const Point<dim> &x, const Function &f) const;
+
+    /// a − b, to the nearest periodic image of b.
+    Tensor<1, dim> offset(const Point<dim> &a, const Point<dim> &b) const;
+
+  private:
+    using Bin = std::array<long, dim>;
+    Bin bin_of(const Point<dim> &x) const;
+
+    Point<dim>                               lower;
+    Tensor<1, dim>                           length;
+    std::array<bool, dim>                    periodic{};
+    std::array<long, dim>                    n_bins{};
+    std::map<Bin, std::vector<unsigned int>> members;
+  };
+
+  template <int dim>
+  template <typename Function>
+  void CellList<dim>::for_each_near(const Point<dim> &x, const Function &f) const
+  {
+    // The distinct neighbour bins in each direction (with few bins, wrapping around a
+    // periodic direction would list one bin twice).
+    const Bin                          own = bin_of(x);
+    std::array<std::vector<long>, dim> near;
+    for (unsigned int d = 0; d < dim; ++d)
+      for (long o = -1; o <= 1; ++o)
+        {
+          long b = own[d] + o;
+          if (periodic[d])
+            b = (b + n_bins[d]) % n_bins[d];
+          else if (b < 0 || b >= n_bins[d])
+            continue;
+          if (std::find(near[d].begin(), near[d].end(), b) == near[d].end())
+            near[d].push_back(b);
+        }
+    std::array<std::size_t, dim> choice{};
+    while (true)
+      {
+        Bin b;
+        for (unsigned int d = 0; d < dim; ++d)
+          b[d] = near[d][choice[d]];
+        const auto it = members.find(b);
+        if (it != members.end())
+          for (const unsigned int k : it->second)
+            f(k);
+        // Next combination of neighbour bins, odometer style.
+        unsigned int d = 0;
+        while (d < dim && ++choice[d] == near[d].size())
+          choice[d++] = 0;
+        if (d == dim)
+          break;
+      }
+  }
+} // namespace fdparticle
+
+#endif

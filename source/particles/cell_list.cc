@@ -1,0 +1,56 @@
+#include <fdparticle/particles/cell_list.h>
+
+#include <cmath>
+
+namespace fdparticle
+{
+  namespace
+  {
+    /// Bins per direction at most: keeps the bin keys small when the width is tiny
+    /// against the box, at no cost to correctness (bins only get wider).
+    constexpr long max_bins_per_direction = 1 << 16;
+  } // namespace
+
+  template <int dim>
+  CellList<dim>::CellList(const Domain<dim> &domain, const double width)
+    : lower(domain.lower_corner())
+    , length(domain.upper_corner() - domain.lower_corner())
+  {
+    Assert(width > 0, ExcInternalError());
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        periodic[d] = domain.is_periodic(d);
+        n_bins[d] = std::clamp(static_cast<long>(std::floor(length[d] / width)), 1L,
+                               max_bins_per_direction);
+      }
+  }
+
+  template <int dim>
+  typename CellList<dim>::Bin CellList<dim>::bin_of(const Point<dim> &x) const
+  {
+    Bin b;
+    for (unsigned int d = 0; d < dim; ++d)
+      b[d] = std::clamp(static_cast<long>(std::floor((x[d] - lower[d]) / length[d] * n_bins[d])),
+                        0L, n_bins[d] - 1);
+    return b;
+  }
+
+  template <int dim>
+  void CellList<dim>::insert(const unsigned int k, const Point<dim> &x)
+  {
+    members[bin_of(x)].push_back(k);
+  }
+
+  template <int dim>
+  Tensor<1, dim> CellList<dim>::offset(const Point<dim> &a, const Point<dim> &b) const
+  {
+    Tensor<1, dim> o = a - b;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (periodic[d])
+        o[d] -= length[d] * std::round(o[d] / length[d]);
+    return o;
+  }
+
+  template class CellList<2>;
+  template class CellList<3>;
+} // namespace fdparticle

@@ -1,0 +1,221 @@
+// Unit test of the particle input at scale, in 2D and 3D: the particle file
+// (include/fdparticle/particles/particle_file.h) read through ParticleSet, and the random
+// placement (random_packing.h).
+//
+// The file's particles are compared with the values written into it, line by line; its
+// errors must name the line. The random balls are checked by the comparison of all pairs
+// with the nearest periodic image found by trying every shift by a box length, against
+// the walls and the sub-box, for the radius range, and for the same balls from the same
+// seed. The program prints each check and returns 1 if any fails.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/particles/particle_set.h>
+
+#include "unit_check.h"
+
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <string>
+
+using namespace dealii;
+using namespace fdparticle;
+using namespace unit_check;
+
+namespace
+{
+  const std::string csv_name = "unit_particle_input.csv";
+
+  /// The scene: box [0,1] x [0,1.5] (x [0,1.2]), 'particles' is the body of subsection
+  /// Particles. Returns the error message, or "" if the particles were accepted.
+  template <int dim>
+  std::string parse(const std::string &periodic, const std::string &particles,
+                    ParticleSet<dim> &set, Domain<dim> &domain)
+  {
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    try
+      {
+        prm.parse_input_from_string(
+          "set Dimension = " + std::to_string(dim) + "\nsubsection Geometry\n" +
+          "  set Lower corner = " + (dim == 2 ? "0, 0" : "0, 0, 0") +
+          "\n  set Upper corner = " + (dim == 2 ? "1, 1.5" : "1, 1.5, 1.2") +
+          "\n  set Subdivisions = " + (dim == 2 ? "4, 6" : "4, 6, 5") +
+          "\n  set Periodic directions = " + periodic + "\nend\nsubsection Particles\n" +
+          particles + "\nend\n");
+        domain.parse_parameters(prm);
+        set.parse_parameters(prm, domain);
+      }
+    catch (const std::exception &exc)
+      {
+        return ParameterTools::one_line_message(exc);
+      }
+    return "";
+  }
+
+  bool contains(const std::string &text, const std::string &part)
+  {
+    return text.find(part) != std::string::npos;
+  }
+
+  void write(const std::string &text)
+  {
+    std::ofstream(csv_name) << text;
+  }
+
+  template <int dim>
+  void test_file()
+  {
+    std::cout << dim << "D particle file" << std::endl;
+    // A comment, a header, a blank line, then free, fixed (padded with empty columns as a
+    // spreadsheet writes them) and prescribed particles.
+    const std::string three = (dim == 2 ? "" : ", 0.6");
+    write("# three balls\nx, y" + std::string(dim == 3 ? ", z" : "") +
+          ", radius, density, motion\n\n0.3, 0.4" + three + ", 0.1, 2\n" + "0.7, 0.4" +
+          three + ", 0.12, 3, fixed,,,\n" + "0.5, 1.1" + three + ", 0.08, 1.5, prescribed, 0.5, -1" +
+          (dim == 2 ? ", 2" : ", 0.25, 1, 2, 3") + "\n");
+    ParticleSet<dim> set;
+    Domain<dim>      domain;
+    const std::string error = parse<dim>("", "set Particles = 0.5, 0.75" + three +
+                                               " : 0.05 : 4\nset Particle file = " + csv_name,
+                                         set, domain);
+    check(error.empty(), "file accepted", error);
+    if (!error.empty())
+      return;
+    check(set.size() == 4, "the list's particle, then the file's three");
+    check_close(set[0].radius, 0.05, 0, "the list's particle comes first");
+    check_close(set[1].position[1], 0.4, 0, "line 4: y");
+    check_close(set[2].radius, 0.12, 0, "line 5: radius");
+    check_close(set[2].density, 3.0, 0, "line 5: density");
+    check(set[1].motion == ParticleMotion::free && set[2].motion == ParticleMotion::fixed &&
+            set[3].motion == ParticleMotion::prescribed,
+          "motions free (default), fixed, prescribed");
+    check_close(set[3].velocity[1], -1.0, 0, "line 6: prescribed vy");
+    check_close(set[3].omega[2], dim == 2 ? 2.0 : 3.0, 0, "line 6: prescribed w_z");
+    check(set.n_unknowns() == 2 * RigidBody<dim>::n_unknowns, "two free particles' unknowns");
+
+    // Errors name the file's line.
+    const std::string ok = "0.3, 0.4" + three + ", 0.1, 2\n";
+    const std::vector<std::pair<std::string, std::string>> bad = {
+      {ok + "# c\n0.7, x" + three + ", 0.1, 2\n", "line 3) centre"},
+      {ok + ok.substr(0, ok.size() - 3) + "\n", "line 2)': '"},
+      {ok + "0.7, 0.4" + three + ", 0.1, 2, rolling\n", "line 2)': motion 'rolling'"},
+      {ok + "0.7, 0.4" + three + ", 0.1, 2, prescribed\n", "line 2)': 'prescribed' needs"},
+      {ok + "0.7, 0.4" + three + ", -0.1, 2\n", "line 2)': the radius must be positive"},
+      {"# nothing\n", "lists no particle"},
+      {ok + "0.35, 0.4" + three + ", 0.1, 2\n", "Particles 1 and 2 overlap"}};
+    for (const auto &[text, expected] : bad)
+      {
+        write(text);
+        ParticleSet<dim> s;
+        const std::string e = parse<dim>("", "set Particle file = " + csv_name, s, domain);
+        check(contains(e, expected), "error names it: " + expected, e.substr(0, 300));
+      }
+    std::remove(csv_name.c_str());
+    ParticleSet<dim>  s;
+    const std::string e = parse<dim>("", "set Particle file = " + csv_name, s, domain);
+    check(contains(e, "cannot read 'unit_particle_input.csv'"), "a missing file is named",
+          e.substr(0, 300));
+  }
+
+  /// Smallest gap between two balls, by the nearest periodic image over all shifts.
+  template <int dim>
+  double smallest_gap(const ParticleSet<dim> &set, const Domain<dim> &domain)
+  {
+    const Tensor<1, dim> length = domain.upper_corner() - domain.lower_corner();
+    double               smallest = std::numeric_limits<double>::max();
+    for (unsigned int i = 0; i < set.size(); ++i)
+      for (unsigned int j = i + 1; j < set.size(); ++j)
+        for (unsigned int s = 0; s < std::pow(3, dim); ++s)
+          {
+            Tensor<1, dim> offset = set[i].position - set[j].position;
+            unsigned int   code = s;
+            bool           allowed = true;
+            for (unsigned int d = 0; d < dim; ++d, code /= 3)
+              {
+                const int shift = int(code % 3) - 1;
+                allowed = allowed && (shift == 0 || domain.is_periodic(d));
+                offset[d] += shift * length[d];
+              }
+            if (allowed)
+              smallest = std::min(smallest, offset.norm() - set[i].radius - set[j].radius);
+          }
+    return smallest;
+  }
+
+  template <int dim>
+  void test_random(const std::string &periodic)
+  {
+    std::cout << dim << "D random particles, periodic directions '" << periodic << "'"
+              << std::endl;
+    const unsigned int count = (dim == 2 ? 40 : 150);
+    const double       gap = 0.02, r_min = 0.03, r_max = 0.05;
+    const std::string  three = (dim == 2 ? "" : ", 0.6");
+    const auto random = [&](const unsigned int seed, const unsigned int n) {
+      return "set Particles = 0.5, 1.2" + three + " : 0.1 : 2\nsubsection Random particles\n"
+             "  set Count = " + std::to_string(n) + "\n  set Radius = " + std::to_string(r_min) +
+             ", " + std::to_string(r_max) + "\n  set Density = 1.5\n  set Minimum gap = " +
+             std::to_string(gap) + "\n  set Lower corner = " + (dim == 2 ? "0, 0.5" : "0, 0.5, 0") +
+             "\n  set Seed = " + std::to_string(seed) + "\nend";
+    };
+    ParticleSet<dim> set, same, other;
+    Domain<dim>      domain;
+    std::string      error = parse<dim>(periodic, random(7, count), set, domain);
+    check(error.empty(), "placed", error.substr(0, 300));
+    if (!error.empty())
+      return;
+    check(set.size() == count + 1, "the list's ball and " + std::to_string(count) + " random ones");
+    check(smallest_gap(set, domain) >= gap * (1 - 1e-12),
+          "no two balls closer than the minimum gap (all pairs, nearest periodic image)",
+          sci(smallest_gap(set, domain)));
+    bool in_sub_box = true, off_walls = true, radii = true, free = true;
+    for (unsigned int k = 1; k < set.size(); ++k)
+      {
+        const Particle<dim> &p = set[k];
+        radii = radii && p.radius >= r_min && p.radius <= r_max && p.density == 1.5;
+        free = free && p.motion == ParticleMotion::free;
+        in_sub_box = in_sub_box && p.position[1] - p.radius >= 0.5;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double wall = domain.is_periodic(d) ? 0 : gap;
+            off_walls = off_walls && p.position[d] - p.radius >= domain.lower_corner()[d] + wall &&
+                        p.position[d] + p.radius <= domain.upper_corner()[d] - wall;
+          }
+      }
+    check(radii, "radii in [min, max], density as given");
+    check(free, "random balls are free");
+    check(in_sub_box, "balls inside the sub-box");
+    check(off_walls, "walls kept at the minimum gap, periodic boundaries not crossed");
+    parse<dim>(periodic, random(7, count), same, domain);
+    parse<dim>(periodic, random(8, count), other, domain);
+    double same_difference = 0, other_difference = 0;
+    for (unsigned int k = 1; k < set.size(); ++k)
+      {
+        same_difference += (set[k].position - same[k].position).norm();
+        other_difference += (set[k].position - other[k].position).norm();
+      }
+    check(same_difference == 0, "the same seed gives the same balls");
+    check(other_difference > 0, "another seed gives other balls");
+
+    ParticleSet<dim> jammed;
+    error = parse<dim>(periodic, random(7, 20 * count), jammed, domain);
+    check(contains(error, "jams near"), "an impossible packing is refused with its fraction",
+          error.substr(0, 300));
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  test_file<2>();
+  test_file<3>();
+  test_random<2>("");
+  test_random<2>("x");
+  test_random<3>("x, z");
+  return summary();
+}
