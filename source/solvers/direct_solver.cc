@@ -8,7 +8,9 @@
 #include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_LinearProblem.h>
+#include <Epetra_Map.h>
 #include <Epetra_MultiVector.h>
+#include <Epetra_Vector.h>
 #include <Teuchos_ParameterList.hpp>
 #include <metis.h>
 
@@ -58,6 +60,9 @@ namespace fdparticle
           default: return std::to_string(code);
         }
     }
+
+    /// MUMPS's INFOG(1) for a numerically singular matrix.
+    constexpr int mumps_singular = -10;
 
     /// MUMPS reports large counts as −(count in millions).
     double mumps_count(const int v) { return v >= 0 ? double(v) : -1e6 * v; }
@@ -191,26 +196,130 @@ namespace fdparticle
 
   void DirectSolver::pattern_changed()
   {
-    // The factorization refers to A's Epetra matrix: released before A changes.
+    // The factorization refers to A's Epetra matrix or to K: released before they change.
     solver.reset();
     problem.reset();
     Z.reset();
+    K.reset();
+    K_pattern.clear();
+    factored      = nullptr;
     symbolic_done = numeric_done = schur_done = false;
   }
 
   void DirectSolver::operator_changed()
   {
-    // New values, same pattern: the symbolic factorization stays valid.
+    // New values, same pattern of A: the symbolic factorization of A stays valid; K is
+    // rebuilt at the next solve, and its pattern decides about its analysis.
     numeric_done = schur_done = false;
   }
 
-  void DirectSolver::factorize_symbolic(const NewtonSystem &system)
+  void DirectSolver::assemble_bordered(const NewtonSystem &system)
+  {
+    const Epetra_CrsMatrix &E    = system.A.trilinos_matrix();
+    const MPI_Comm          comm = system.A.get_mpi_communicator();
+    const bool              root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+    const unsigned int      m    = system.D.rows();
+    const int               n    = E.NumGlobalRows();
+    const int               n_local = E.NumMyRows();
+
+    // The owned rows of A with the columns of B that are non-zero in them.
+    std::vector<std::vector<int>>    columns(n_local + (root ? m : 0));
+    std::vector<std::vector<double>> values(columns.size());
+    for (int r = 0; r < n_local; ++r)
+      {
+        int     length;
+        double *v;
+        int *   c;
+        E.ExtractMyRowView(r, length, v, c);
+        for (int k = 0; k < length; ++k)
+          {
+            columns[r].push_back(E.GCID(c[k]));
+            values[r].push_back(v[k]);
+          }
+      }
+    for (unsigned int j = 0; j < m; ++j)
+      {
+        const double *b = system.B[j].trilinos_vector()[0];
+        for (int r = 0; r < n_local; ++r)
+          if (b[r] != 0)
+            {
+              columns[r].push_back(n + j);
+              values[r].push_back(b[r]);
+            }
+      }
+    // The rows of C: their non-zeros, gathered on rank 0 as (row, column, value).
+    std::vector<double> local_c;
+    for (unsigned int i = 0; i < m; ++i)
+      {
+        const Epetra_Vector &c = *system.C[i].trilinos_vector()(0);
+        for (int r = 0; r < n_local; ++r)
+          if (c[r] != 0)
+            local_c.insert(local_c.end(), {double(i), double(c.Map().GID(r)), c[r]});
+      }
+    const std::vector<std::vector<double>> all_c = dealii::Utilities::MPI::gather(comm, local_c, 0);
+    if (root)
+      {
+        for (const std::vector<double> &part : all_c)
+          for (std::size_t e = 0; e < part.size(); e += 3)
+            {
+              columns[n_local + int(part[e])].push_back(int(part[e + 1]));
+              values[n_local + int(part[e])].push_back(part[e + 2]);
+            }
+        // D, with its diagonal always: for a neutrally buoyant particle it is 0, and the
+        // row still needs its pivot position in the pattern.
+        for (unsigned int i = 0; i < m; ++i)
+          for (unsigned int j = 0; j < m; ++j)
+            if (i == j || system.D(i, j) != 0)
+              {
+                columns[n_local + i].push_back(n + j);
+                values[n_local + i].push_back(system.D(i, j));
+              }
+      }
+
+    std::vector<int> pattern;
+    for (const std::vector<int> &row : columns)
+      {
+        pattern.push_back(row.size());
+        pattern.insert(pattern.end(), row.begin(), row.end());
+      }
+    const bool new_pattern =
+      dealii::Utilities::MPI::logical_or(!K || pattern != K_pattern, comm);
+
+    std::vector<int> gids(columns.size());
+    for (int r = 0; r < n_local; ++r)
+      gids[r] = E.GRID(r);
+    for (unsigned int i = 0; root && i < m; ++i)
+      gids[n_local + i] = n + i;
+    if (new_pattern)
+      {
+        // Amesos refers to K: a new K needs a new analysis.
+        solver.reset();
+        problem.reset();
+        symbolic_done = false;
+        const Epetra_Map map(n + int(m), int(gids.size()), gids.data(), 0, E.Comm());
+        std::vector<int> lengths(columns.size());
+        for (std::size_t r = 0; r < columns.size(); ++r)
+          lengths[r] = columns[r].size();
+        K = std::make_unique<Epetra_CrsMatrix>(Copy, map, lengths.data(), true);
+        K_pattern = std::move(pattern);
+        for (std::size_t r = 0; r < columns.size(); ++r)
+          AssertThrow(K->InsertGlobalValues(gids[r], lengths[r], values[r].data(),
+                                            columns[r].data()) == 0,
+                      ExcInternalError());
+        AssertThrow(K->FillComplete() == 0, ExcInternalError());
+      }
+    else
+      for (std::size_t r = 0; r < columns.size(); ++r)
+        AssertThrow(K->ReplaceGlobalValues(gids[r], columns[r].size(), values[r].data(),
+                                           columns[r].data()) == 0,
+                    ExcInternalError());
+  }
+
+  void DirectSolver::factorize_symbolic(const MPI_Comm comm)
   {
     const auto start = std::chrono::steady_clock::now();
-    pattern_changed();
     // Amesos takes a non-const operator but only reads it.
-    Epetra_CrsMatrix &E = const_cast<Epetra_CrsMatrix &>(system.A.trilinos_matrix());
-    const MPI_Comm    comm = system.A.get_mpi_communicator();
+    Epetra_CrsMatrix &E = const_cast<Epetra_CrsMatrix &>(*factored);
     problem             = std::make_unique<Epetra_LinearProblem>();
     problem->SetOperator(&E);
 
@@ -247,12 +356,11 @@ namespace fdparticle
                 << std::endl;
   }
 
-  void DirectSolver::factorize_numeric(const NewtonSystem &system)
+  void DirectSolver::factorize_numeric(const MPI_Comm comm)
   {
     if (!symbolic_done)
-      factorize_symbolic(system);
-    const MPI_Comm comm  = system.A.get_mpi_communicator();
-    const auto     start = std::chrono::steady_clock::now();
+      factorize_symbolic(comm);
+    const auto start = std::chrono::steady_clock::now();
     // MUMPS sizes its work arrays from the analysis' estimate plus ICNTL(14) percent; with
     // many delayed pivots (the saddle point) the estimate can be short (INFOG(1) = -9 at
     // 2D h = 1/256). Then redo the analysis with more margin.
@@ -268,12 +376,15 @@ namespace fdparticle
                     ExcMessage(solver_type + ": the numeric factorization failed" +
                                (mumps ? " (MUMPS INFOG(1) = " + std::to_string(info) + ")" :
                                         std::string()) +
-                               "."));
+                               (info == mumps_singular ?
+                                  ": the Newton matrix is singular (a particle not resolved "
+                                  "by the mesh, too few cells inside it?)." :
+                                  ".")));
         workspace_percent *= workspace_growth;
         if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
           std::cout << "  direct solver: MUMPS ran out of working space (INFOG(1) = " << info
                     << "); analysing again with ICNTL(14) = " << workspace_percent << std::endl;
-        factorize_symbolic(system);
+        factorize_symbolic(comm);
       }
     numeric_done = true;
     schur_done   = false; // Z and S belong to the previous values
@@ -304,11 +415,71 @@ namespace fdparticle
     std::cout << std::endl;
   }
 
+  void DirectSolver::forward_backward(Epetra_MultiVector &rhs, Epetra_MultiVector &sol,
+                                      const MPI_Comm comm)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    problem->SetLHS(&sol);
+    problem->SetRHS(&rhs);
+    AssertThrow(solver->Solve() == 0, ExcMessage(solver_type + ": the solve failed."));
+    problem->SetLHS(nullptr);
+    problem->SetRHS(nullptr);
+    ++stats.n_solves;
+    const double t = seconds_since(start);
+    stats.solve_seconds += t;
+    if (verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      std::cout << "  direct solver " << solver_type << ": solve with " << rhs.NumVectors()
+                << " right-hand side(s) " << std::fixed << std::setprecision(3) << t << " s"
+                << std::defaultfloat << std::endl;
+  }
+
   LinearSolver::SolveInfo DirectSolver::solve(const NewtonSystem &system, const double,
                                                TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y)
   {
+    const bool bordered = system.D.rows() > max_schur_unknowns;
     if (!numeric_done)
-      factorize_numeric(system);
+      {
+        if (bordered)
+          assemble_bordered(system);
+        factored = bordered ? K.get() : &system.A.trilinos_matrix();
+        factorize_numeric(system.A.get_mpi_communicator());
+      }
+    return bordered ? solve_bordered(system, x, y) : solve_by_schur(system, x, y);
+  }
+
+  LinearSolver::SolveInfo DirectSolver::solve_bordered(const NewtonSystem &system,
+                                                        TrilinosWrappers::MPI::Vector &x,
+                                                        Eigen::VectorXd &y)
+  {
+    const MPI_Comm     comm  = system.A.get_mpi_communicator();
+    const bool         root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+    const unsigned int m     = system.D.rows();
+
+    Epetra_Vector rhs(K->RangeMap()), sol(K->DomainMap());
+    const int     n_local = system.r_fe.trilinos_vector().MyLength();
+    {
+      const double *r = system.r_fe.trilinos_vector()[0];
+      for (int i = 0; i < n_local; ++i)
+        rhs[i] = -r[i];
+      for (unsigned int i = 0; root && i < m; ++i)
+        rhs[n_local + i] = -system.r_p[i];
+    }
+    forward_backward(rhs, sol, comm);
+
+    x.reinit(system.r_fe.locally_owned_elements(), comm);
+    std::copy_n(&sol[0], n_local, x.trilinos_vector()[0]);
+    std::vector<double> particle_part(m, 0.0);
+    if (root)
+      std::copy_n(sol.Values() + n_local, m, particle_part.data());
+    particle_part = dealii::Utilities::MPI::broadcast(comm, particle_part, 0);
+    y = Eigen::Map<const Eigen::VectorXd>(particle_part.data(), m);
+    return SolveInfo{1, 0.0};
+  }
+
+  LinearSolver::SolveInfo DirectSolver::solve_by_schur(const NewtonSystem &system,
+                                                        TrilinosWrappers::MPI::Vector &x,
+                                                        Eigen::VectorXd &y)
+  {
     const auto &B = system.B;
     const auto &C = system.C;
     const unsigned int m = B.size();
@@ -316,7 +487,6 @@ namespace fdparticle
     // solve, kept for the later ones (modified Newton), which then need one right-hand side.
     const bool         new_schur = !schur_done && m > 0;
     const unsigned int n_rhs     = new_schur ? m + 1 : 1;
-    const auto         start     = std::chrono::steady_clock::now();
 
     // One solve for the right-hand sides (−r_fe[, B_1, …, B_m]): column 0 gives
     // z0 = −A⁻¹ r_fe, column j + 1 gives Z_j = A⁻¹ B_j.
@@ -330,19 +500,8 @@ namespace fdparticle
       for (unsigned int j = 1; j < n_rhs; ++j)
         std::copy_n(B[j - 1].trilinos_vector()[0], n_local, rhs[j]);
     }
-    problem->SetLHS(&sol);
-    problem->SetRHS(&rhs);
-    AssertThrow(solver->Solve() == 0, ExcMessage(solver_type + ": the solve failed."));
-    problem->SetLHS(nullptr);
-    problem->SetRHS(nullptr);
-    ++stats.n_solves;
-    const double t = seconds_since(start);
-    stats.solve_seconds += t;
     const MPI_Comm comm = system.r_fe.get_mpi_communicator();
-    if (verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-      std::cout << "  direct solver " << solver_type << ": solve with " << n_rhs
-                << " right-hand side(s) " << std::fixed << std::setprecision(3) << t << " s"
-                << std::defaultfloat << std::endl;
+    forward_backward(rhs, sol, comm);
 
     x.reinit(system.r_fe.locally_owned_elements(), comm);
     double *xv = x.trilinos_vector()[0];
@@ -398,4 +557,5 @@ namespace fdparticle
       }
     return exact;
   }
+
 } // namespace fdparticle

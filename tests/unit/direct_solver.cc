@@ -1,7 +1,8 @@
 // Unit test of fdparticle::DirectSolver (include/fdparticle/solvers/direct_solver.h) on a
 // NewtonSystem (include/fdparticle/solvers/newton_system.h): the
-// Newton correction from the Schur complement of the particle block must equal the solution
-// of the whole bordered system solved densely (Eigen, full-pivot LU), for every direct
+// Newton correction, from the Schur complement of the particle block (few particle
+// unknowns) or from the factorization of the whole bordered matrix (many), must equal the
+// solution of the bordered system solved densely (Eigen, full-pivot LU), for every direct
 // solver and MUMPS ordering the parameter file can select.
 //
 // The finite-element block is a small saddle-point matrix like the real one: an
@@ -33,7 +34,10 @@ using namespace unit_check;
 
 namespace
 {
-  constexpr unsigned int n_u = 40, n_p = 19, n = n_u + n_p, m = 3;
+  constexpr unsigned int n_u = 40, n_p = 19, n = n_u + n_p;
+  /// Particle unknowns: 3 (the Schur complement) and 20 (the bordered matrix K), on either
+  /// side of DirectSolver's max_schur_unknowns.
+  unsigned int m = 0;
 
   /// Pressure row k couples to the velocities k and k + 1 (a discrete divergence).
   TrilinosWrappers::SparsityPattern make_pattern(const bool extra_entry)
@@ -146,8 +150,9 @@ namespace
 
   void check_solver(const std::string &solver_name, const std::string &ordering)
   {
-    const std::string what =
-      solver_name + (solver_name == "Amesos_Mumps" ? " (" + ordering + ")" : "");
+    const std::string what = solver_name +
+                             (solver_name == "Amesos_Mumps" ? " (" + ordering + ")" : "") +
+                             ", m = " + std::to_string(m);
     ParameterHandler prm;
     LinearSolver::declare_parameters(prm);
     prm.parse_input_from_string("subsection Solver\n"
@@ -188,8 +193,12 @@ namespace
 int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  for (const std::string ordering : {"auto", "amd", "amf", "qamd", "pord", "metis"})
-    check_solver("Amesos_Mumps", ordering);
-  check_solver("Amesos_Klu", "auto");
+  for (const unsigned int particle_unknowns : {3u, 20u})
+    {
+      m = particle_unknowns;
+      for (const std::string ordering : {"auto", "amd", "amf", "qamd", "pord", "metis"})
+        check_solver("Amesos_Mumps", ordering);
+      check_solver("Amesos_Klu", "auto");
+    }
   return summary();
 }

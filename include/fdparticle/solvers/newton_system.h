@@ -18,7 +18,7 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * The Newton system of one iteration as a 2×2 block matrix (doc/method.md §5)
+   * The Newton system of one iteration as a 2×2 block matrix (doc/method.md §8)
    *
    *     [ A  B ] [ x ]     [ r_fe ]   A: (u, λ, p) finite-element block (Trilinos, distributed)
    *     [ C  D ] [ y ] = − [ r_p  ]   y: the particle block (V_k, ω_k), m = (dim + rot)·n_free
