@@ -106,7 +106,8 @@ AXES = "xyz"
 # particles.csv columns by kind: (kind, component) for vectors, pseudovectors (angular
 # velocity, torque) and positions; a mirror normal to axis a negates component a of a
 # vector and the other components of a pseudovector.
-VECTOR_COLUMNS = {"v": "velocity", "f": "force", "contact_f": "force", "mean_v": "velocity"}
+VECTOR_COLUMNS = {"v": "velocity", "f": "force", "contact_f": "force", "mean_v": "velocity",
+                  "mean_particle_v": "velocity"}
 PSEUDO_COLUMNS = {"w": "angular velocity", "t": "torque"}
 
 
@@ -184,7 +185,8 @@ def compare_mirrored(first_dir, mirror_dir, axis, lo, hi, radius, tol):
             continue
         kinds = {h: split_column(h) for h in header}
         if fname == "statistics.csv":
-            kinds = {h: k for h, k in kinds.items() if k and k[0] == "mean_v"}
+            kinds = {h: k for h, k in kinds.items()
+                     if k and k[0] in ("mean_v", "mean_particle_v")}
         # Scale of each kind of column, over both runs.
         scale = {}
         for i, h in enumerate(header):
@@ -202,6 +204,7 @@ def compare_mirrored(first_dir, mirror_dir, axis, lo, hi, radius, tol):
             velocity_scale = scale.get("v", 0.0)
         else:
             scale["mean_v"] = max(scale.get("mean_v", 0.0), velocity_scale)
+            scale["mean_particle_v"] = velocity_scale
         for i, h in enumerate(header):
             if not kinds.get(h):
                 continue

@@ -74,7 +74,10 @@ namespace fdparticle
               {"mean_vy", s.mean_velocity[1]},
               {"mean_vz", s.mean_velocity[2]},
               {"contacts", double(s.contacts)},
-              {"min_gap", s.min_gap}};
+              {"min_gap", s.min_gap},
+              {"mean_particle_vx", s.mean_particle_velocity[0]},
+              {"mean_particle_vy", s.mean_particle_velocity[1]},
+              {"mean_particle_vz", s.mean_particle_velocity[2]}};
     }
 
     /// One row of particles.csv per particle: in 2D z, the in-plane ω and torque are 0. The

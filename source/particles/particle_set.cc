@@ -197,6 +197,21 @@ namespace fdparticle
   }
 
   template <int dim>
+  Tensor<1, 3> ParticleSet<dim>::mean_free_velocity() const
+  {
+    Tensor<1, 3> sum;
+    unsigned int n_free = 0;
+    for (const Particle<dim> &p : particles)
+      if (p.motion == ParticleMotion::free)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            sum[d] += p.velocity[d];
+          ++n_free;
+        }
+    return n_free > 0 ? sum / n_free : sum;
+  }
+
+  template <int dim>
   int ParticleSet<dim>::locate(const Point<dim> &x) const
   {
     for (unsigned int k = 0; k < particles.size(); ++k)

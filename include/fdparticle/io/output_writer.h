@@ -41,6 +41,9 @@ namespace fdparticle
     /// particles, capped at a diameter (Collisions::statistics).
     unsigned int contacts = 0;
     double       min_gap  = 0;
+    /// Mean velocity of the free particles (0 without any): a suspension's mean settling
+    /// velocity.
+    Tensor<1, 3> mean_particle_velocity;
   };
 
   /**

@@ -137,6 +137,9 @@ namespace fdparticle
     /// Size of the particle block: dim + n_rotations per free particle.
     unsigned int n_unknowns() const { return n_block_unknowns; }
 
+    /// Mean velocity of the free particles, as three components (0 if there are none).
+    Tensor<1, 3> mean_free_velocity() const;
+
     /// Index of the particle containing x during this step, or -1 (fluid).
     int locate(const Point<dim> &x) const;
 

@@ -193,6 +193,7 @@ namespace fdparticle
         stats.max_velocity = max_velocity();
         field_statistics(stats);
         collisions.statistics(particles, stats.contacts, stats.min_gap);
+        stats.mean_particle_velocity = particles.mean_free_velocity();
         if (refinement.enabled())
           stats.coarse_cut_cells = refinement.coarse_cut_cells(triangulation, particles, base_level);
         write_output(output.vtu_due(time.step_number()));

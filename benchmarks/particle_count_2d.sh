@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# Work per time step against the number of particles at a fixed mesh (doc/particles.md):
+# N = 1, 4, 16, 64 disks (radius 0.04, density 1.1) placed at random in a closed 2 x 2
+# box of fluid on a uniform 64 x 64 mesh (no particle refinement, so every N has the same
+# mesh), Collisions/Model = repulsion, 4 steps of 0.005. Writes doc/particle_count_2d.csv
+# (per N: particle unknowns, seconds per step, in assembly and in the linear solve, peak
+# memory) and the plot doc/particle_count_2d.png.
+#
+# Usage (regenerate):  bash benchmarks/particle_count_2d.sh
+# EXE=PATH overrides the executable, WORK=DIR the work directory.
+set -euo pipefail
+top="$(cd "$(dirname "$0")/.." && pwd)"
+exe="${EXE:-$top/build/fdparticle}"
+work="${WORK:-$top/benchmarks/work/particle_count_2d}"
+mkdir -p "$work"
+csv="$top/doc/particle_count_2d.csv"
+echo "particles,particle_unknowns,dofs,steps,newton_iterations_per_step,seconds_per_step,assembly_seconds_per_step,solve_seconds_per_step,peak_MB" > "$csv"
+for n in 1 4 16 64; do
+  cat > "$work/n$n.prm" <<PRM
+set Dimension = 2
+set Gravity = 0, -981
+subsection Geometry
+  set Lower corner = 0, 0
+  set Upper corner = 2, 2
+  set Subdivisions = 64, 64
+end
+subsection Fluid
+  set Density = 1
+  set Viscosity = 0.1
+end
+subsection Particles
+  subsection Random particles
+    set Count = $n
+    set Radius = 0.04
+    set Density = 1.1
+    set Minimum gap = 0.02
+    set Seed = 1
+  end
+end
+subsection Collisions
+  set Model = repulsion
+end
+subsection Time
+  set End time = 0.02
+  set Time step = 0.005
+end
+subsection Output
+  set Directory = $work/n$n
+  set VTU interval = 0
+end
+PRM
+  /usr/bin/time -f "%M" -o "$work/n$n.mem" "$exe" "$work/n$n.prm" > "$work/n$n.log"
+  /usr/bin/python3 - "$work" "$n" >> "$csv" <<'PY'
+import csv, re, sys
+work, n = sys.argv[1], sys.argv[2]
+log = open(f"{work}/n{n}.log").read()
+def section(name):
+    m = re.search(r"\|\s*" + name + r"\s*\|\s*\d+\s*\|\s*([0-9.]+)(m?s)", log)
+    return float(m.group(1)) / (1000 if m.group(2) == "ms" else 1) if m else 0.0
+rows = list(csv.DictReader(open(f"{work}/n{n}/statistics.csv")))
+steps = len(rows)
+unknowns = int(re.search(r"\+ (\d+) particle unknowns", log).group(1))
+dofs = int(rows[-1]["dofs"])
+total = sum(float(r["wall_seconds"]) for r in rows)
+newton = sum(int(r["nonlinear_iterations"]) for r in rows) / steps
+assembly = section("assemble system") + section("assemble residual")
+peak = int(open(f"{work}/n{n}.mem").read().split()[-1]) / 1024
+print(f"{n},{unknowns},{dofs},{steps},{newton:.2f},{total / steps:.3f},{assembly / steps:.3f},"
+      f"{section('solve') / steps:.3f},{peak:.0f}")
+PY
+  tail -1 "$csv"
+done
+gnuplot <<GP
+set terminal pngcairo size 760,480 noenhanced
+set output "$top/doc/particle_count_2d.png"
+set datafile separator ","
+set logscale x 2; set xrange [0.8:80]; set yrange [0:*]
+set xlabel "particles (fixed 64 x 64 mesh)"; set ylabel "seconds per step"; set key top left
+set y2label "peak memory [MB]"; set y2range [0:*]; set ytics nomirror; set y2tics
+set title "Work per step against particle count (benchmarks/particle_count_2d.sh)"
+plot "$csv" u 1:6 every ::1 w lp lw 2 t "step", "" u 1:8 every ::1 w lp lw 2 t "linear solve", \
+     "" u 1:7 every ::1 w lp lw 2 t "assembly", "" u 1:9 every ::1 axes x1y2 w lp lw 2 dt 2 t "peak memory (right)"
+GP
+echo "wrote doc/particle_count_2d.csv and doc/particle_count_2d.png"
