@@ -205,6 +205,26 @@ namespace fdparticle
   }
 
   template <int dim>
+  std::vector<typename Domain<dim>::WallGap>
+  Domain<dim>::walls_near(const Point<dim> &x, const double r, const double reach) const
+  {
+    std::vector<WallGap> result;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!periodic[d])
+        for (const int side : {-1, 1})
+          {
+            const double gap = (side < 0 ? x[d] - lower[d] : upper[d] - x[d]) - r;
+            if (gap < reach)
+              {
+                WallGap wall{gap, Tensor<1, dim>()};
+                wall.normal[d] = -side; // away from the wall, into the box
+                result.push_back(wall);
+              }
+          }
+    return result;
+  }
+
+  template <int dim>
   bool Domain<dim>::is_periodic(const unsigned int direction) const
   {
     return periodic[direction];

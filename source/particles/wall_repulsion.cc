@@ -40,10 +40,7 @@ namespace fdparticle
                                       const ParticleSet<dim> &particles,
                                       const double finest_cell_size)
   {
-    lower = domain.lower_corner();
-    upper = domain.upper_corner();
-    for (unsigned int d = 0; d < dim; ++d)
-      wall_direction[d] = !domain.is_periodic(d);
+    this->domain = domain;
     rho = range_entry.value_or(finest_cell_size);
     stiffness.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
@@ -53,53 +50,22 @@ namespace fdparticle
   }
 
   template <int dim>
-  std::vector<typename WallRepulsion<dim>::Contact>
-  WallRepulsion<dim>::contacts(const Particle<dim> &P, const Point<dim> &X) const
-  {
-    std::vector<Contact> result;
-    if (!on)
-      return result;
-    for (unsigned int d = 0; d < dim; ++d)
-      if (wall_direction[d])
-        for (const int side : {-1, 1})
-          {
-            const double gap = (side < 0 ? X[d] - lower[d] : upper[d] - X[d]) - P.radius;
-            if (gap < rho)
-              {
-                Contact c;
-                c.gap = gap;
-                c.normal[d] = -side; // away from the wall, into the box
-                result.push_back(c);
-              }
-          }
-    return result;
-  }
-
-  template <int dim>
   void WallRepulsion<dim>::add_to_particle_rows(ParticleSet<dim> &particles,
                                                 const std::array<double, 3> &c,
                                                 Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const
   {
+    if (!on)
+      return;
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
-        Particle<dim> &P = particles[k];
+        const Particle<dim> &P = particles[k];
         if (P.first_unknown == numbers::invalid_unsigned_int)
           continue;
         const RepulsionLaw law{rho, stiffness[k]};
-        const Point<dim>   X = P.position_after_step(c);
-        for (const Contact &w : contacts(P, X))
-          {
-            const Tensor<1, dim> F = law.force(w.gap) * w.normal;
-            P.contact_force += F;
-            for (unsigned int d = 0; d < dim; ++d)
-              r_p[P.first_unknown + d] -= F[d];
-            // dF/dX = F'(g) n nᵀ (the gap grows along n), and dX/dV = 1/c0.
-            if (D != nullptr)
-              for (unsigned int i = 0; i < dim; ++i)
-                for (unsigned int j = 0; j < dim; ++j)
-                  (*D)(P.first_unknown + i, P.first_unknown + j) -=
-                    law.derivative(w.gap) * w.normal[i] * w.normal[j] / c[0];
-          }
+        for (const auto &wall : domain.walls_near(P.position_after_step(c), P.radius, rho))
+          NormalContact<dim>::wall(particles, k, wall.normal, wall.gap)
+            .add(particles, NormalLawValue{law.force(wall.gap), law.derivative(wall.gap), 0.0},
+                 c, r_p, D);
       }
   }
 

@@ -22,6 +22,7 @@
 #include <fdparticle/io/smoothness_meter.h>
 #include <fdparticle/core/time_stepper.h>
 #include <fdparticle/particles/collisions.h>
+#include <fdparticle/particles/lubrication.h>
 #include <fdparticle/particles/wall_repulsion.h>
 #include <fdparticle/solvers/linear_solver.h>
 #include <fdparticle/solvers/newton_solver.h>
@@ -112,6 +113,7 @@ namespace fdparticle
     Checkpointer<dim>      checkpointer;
     WallRepulsion<dim>     repulsion;
     Collisions<dim>        collisions;
+    Lubrication<dim>       lubrication;
     unsigned int           base_level = 0;
     NewtonSystem                  system;
     /// Declared after the system it refers to, so that it is destroyed first.

@@ -67,6 +67,15 @@ namespace fdparticle
                                const bool                 homogeneous,
                                AffineConstraints<double> &constraints) const;
 
+    /// A wall near a ball: the gap between them and the wall's inward normal.
+    struct WallGap
+    {
+      double         gap;
+      Tensor<1, dim> normal;
+    };
+    /// The walls whose gap to the ball of centre x and radius r is below reach.
+    std::vector<WallGap> walls_near(const Point<dim> &x, const double r, const double reach) const;
+
     bool                 is_periodic(const unsigned int direction) const;
     bool                 is_wall(const types::boundary_id face) const;
     Tensor<1, dim>       wall_velocity(const types::boundary_id face) const;

@@ -5,6 +5,8 @@
 
 #include <fdparticle/core/fluid.h>
 #include <fdparticle/fem/domain.h>
+#include <fdparticle/particles/contact_friction.h>
+#include <fdparticle/particles/normal_contact.h>
 #include <fdparticle/particles/pair_search.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/particles/repulsion_law.h>
@@ -14,6 +16,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace fdparticle
@@ -29,11 +32,22 @@ namespace fdparticle
    *   363–426, eq. (2.6)), the RepulsionLaw of the gap g = |X_i − X_j| − R_i − R_j along
    *   the line of centres, F_i = F(g) n = −F_j with n = (X_i − X_j)/|X_i − X_j|, with the
    *   range and the stiffness that the wall repulsion uses.
+   * - spring-dashpot: a linear soft-sphere contact (doc/method.md §12) acting from the same
+   *   range: F_i = (k δ − γ v_n) n with the compression δ = ρ − g > 0 and v_n = (V_i − V_j)·n.
+   *   The damping γ = 2 ζ √(m_eff k), ζ = −ln e / √(π² + ln² e), gives a dry pair of
+   *   effective mass m_eff = m_i m_j/(m_i + m_j) the restitution coefficient e; the
+   *   contact lasts t_c = √(m_eff/k) √(π² + ln² e). The contact starts a cell before the
+   *   surfaces touch, as Kempe & Fröhlich (J. Fluid Mech. 709 (2012) 445–489) lengthen
+   *   theirs: balls closer than a cell share cells, whose one velocity field cannot follow
+   *   two rigid motions, and there the discrete flow stops an approaching ball with a
+   *   force that depends on the mesh rather than on μ (doc/particles.md). With a friction
+   *   coefficient μ_c > 0 the contact also has Coulomb friction (ContactFriction).
    *
-   * Like the wall repulsion the force is evaluated at the end-of-step positions X^{n+1}(V)
-   * and is implicit: its derivative couples the two particles' rows of the Newton matrix's
-   * particle block. Pairs out of range are found by a cell list (PairSearch) and cost
-   * nothing further.
+   * The forces are evaluated at the end-of-step positions X^{n+1}(V) and velocities V and
+   * are implicit (NormalContact): their derivatives couple the two particles' rows of the
+   * Newton matrix's particle block, so a stiff spring neither explodes nor needs sub-steps;
+   * only the bounce's restitution needs t_c resolved by the time step. Pairs out of reach
+   * are found by a cell list (PairSearch) and cost nothing further.
    */
   template <int dim>
   class Collisions
@@ -42,18 +56,23 @@ namespace fdparticle
     enum class Model
     {
       none,
-      repulsion
+      repulsion,
+      spring_dashpot
     };
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
-    /// Resolve the 'auto' defaults: ρ = h_finest; K = 100 × apparent weight of the
-    /// heavier ball of each pair.
+    /// Resolve the 'auto' defaults: ρ = h_finest; K = 100 × the apparent weight of the
+    /// heavier ball of each pair, and the spring's k = K/ρ.
     void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
                     const ParticleSet<dim> &particles, const double finest_cell_size);
 
     Model model() const { return contact_model; }
+
+    /// For the log: the spring-dashpot contact duration of the stiffest pair against the
+    /// time step dt; empty for the other models.
+    std::string describe(const double dt) const;
 
     /**
      * Subtract the contact force at X^{n+1}(V) from the force-balance rows of the free
@@ -73,13 +92,26 @@ namespace fdparticle
   private:
     Model  contact_model = Model::none;
     /// The entries as read; empty for 'auto'.
-    std::optional<double> range_entry, stiffness_entry;
-    double range = 0;
-    /// Apparent weight of each ball, |ρ_k − ρ_f| |P_k| |g|.
-    std::vector<double>              weight;
+    std::optional<double> range_entry, stiffness_entry, spring_entry;
+    double range = 0, restitution = 1, friction = 0;
+    /// The friction's slip velocity, relative to the spring's velocity scale ρ/t_c (it
+    /// crosses its range in about t_c): a contact that should stick creeps at a thousandth
+    /// of the speed that would close the range within one contact time.
+    static constexpr double slip_velocity_fraction = 1e-3;
+    /// Apparent weight |ρ_k − ρ_f| |P_k| |g| and dry mass ρ_k |P_k| of each ball.
+    std::vector<double>              weight, mass;
     std::unique_ptr<PairSearch<dim>> search;
 
-    RepulsionLaw law(const unsigned int i, const unsigned int j) const;
+    RepulsionLaw   law(const unsigned int i, const unsigned int j) const;
+    NormalLawValue spring_dashpot(const unsigned int i, const unsigned int j,
+                                  const ParticleSet<dim> &particles, const double gap,
+                                  const double normal_velocity) const;
+    double spring_stiffness(const unsigned int i, const unsigned int j) const;
+    /// √(m_eff/k) √(π² + ln² e): how long a contact of balls i and j lasts.
+    double contact_time(const unsigned int i, const unsigned int j,
+                        const ParticleSet<dim> &particles) const;
+    double effective_mass(const unsigned int i, const unsigned int j,
+                          const ParticleSet<dim> &particles) const;
   };
 } // namespace fdparticle
 

@@ -6,6 +6,7 @@
 
 #include <fdparticle/fem/domain.h>
 #include <fdparticle/core/fluid.h>
+#include <fdparticle/particles/normal_contact.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/particles/repulsion_law.h>
 
@@ -54,21 +55,12 @@ namespace fdparticle
                               Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
 
   private:
-    /// Gap and inward normal for every wall the ball at X is within range of.
-    struct Contact
-    {
-      double         gap;
-      Tensor<1, dim> normal;
-    };
-    std::vector<Contact> contacts(const Particle<dim> &P, const Point<dim> &X) const;
-
     bool                  on = true;
     /// The entries as read; empty for 'auto'.
     std::optional<double> range_entry, stiffness_entry;
     double                rho = 0;
     std::vector<double>   stiffness; // K per particle
-    Point<dim>            lower, upper;
-    std::array<bool, dim> wall_direction{};
+    Domain<dim>           domain;
   };
 } // namespace fdparticle
 

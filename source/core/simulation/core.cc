@@ -65,6 +65,7 @@ namespace fdparticle
     Checkpointer<3>::declare_parameters(prm);
     WallRepulsion<3>::declare_parameters(prm);
     Collisions<3>::declare_parameters(prm);
+    Lubrication<3>::declare_parameters(prm);
     declare_simulation_parameters(prm);
   }
 
@@ -124,6 +125,7 @@ namespace fdparticle
     checkpointer.parse_parameters(prm, output.directory());
     repulsion.parse_parameters(prm);
     collisions.parse_parameters(prm);
+    lubrication.parse_parameters(prm);
     prm.enter_subsection("Initial conditions");
     hydrostatic_start = (prm.get("Pressure") == "hydrostatic");
     prm.leave_subsection();
@@ -163,6 +165,7 @@ namespace fdparticle
       const double finest_cell_size = domain.base_cell_size() / std::pow(2.0, refinement.levels());
       repulsion.initialize(domain, fluid, particles, finest_cell_size);
       collisions.initialize(domain, fluid, particles, finest_cell_size);
+      lubrication.initialize(domain, fluid, finest_cell_size);
     }
 
     pcout << "fdparticle: " << dim << "D, " << triangulation.n_global_active_cells()
@@ -172,6 +175,8 @@ namespace fdparticle
           << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
           << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)" << std::endl;
     check_resolution();
+    if (const std::string line = collisions.describe(time.next_step()); !line.empty())
+      pcout << line << std::endl;
 
     // (simulated time, wall seconds) of the recent steps, for the estimate of the time left.
     std::deque<std::pair<double, double>> recent;

@@ -106,6 +106,8 @@ namespace fdparticle
                                        with_jacobian ? &system.D : nullptr);
       collisions.add_to_particle_rows(particles, c, system.r_p,
                                       with_jacobian ? &system.D : nullptr);
+      lubrication.add_to_particle_rows(particles, c, system.r_p,
+                                       with_jacobian ? &system.D : nullptr);
       if (with_jacobian)
         linear_solver->operator_changed();
       return system.residual_norm();

@@ -1,0 +1,73 @@
+#ifndef fdparticle_particles_contact_friction_h
+#define fdparticle_particles_contact_friction_h
+
+#include <deal.II/base/tensor.h>
+
+#include <fdparticle/particles/particle_set.h>
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <functional>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * Coulomb friction at the contact point of two balls (doc/method.md §12): a tangential
+   * force opposing the sliding velocity there,
+   *
+   *   F_t,i = −μ_c F_n v_t / √(|v_t|² + v_s²) = −F_t,j,
+   *   v_t = tangential part of V_i + ω_i × r_i − V_j − ω_j × r_j,
+   *
+   * and the torques r_i × F_t,i and r_j × F_t,j, with the arms r_i = −(R_i + g/2) n and
+   * r_j = (R_j + g/2) n to the middle of the gap g: the contact acts across a gap (or an
+   * overlap), and one point for both balls keeps the pair's angular momentum. The Coulomb law's jump at v_t = 0 is
+   * smoothed over the slip velocity v_s, so the force has a derivative for Newton; a
+   * contact that should stick creeps at a speed of order v_s instead.
+   *
+   * It is implicit like the normal force, evaluated at X^{n+1}(V), V and ω of the
+   * iterate. Its block of the particle matrix, at most 12 × 12 per contact, is taken by
+   * central differences of this closed-form force in the two balls' unknowns: its exact
+   * derivative (through the normal force, the turning normal and the smoothed direction)
+   * is long, and a contact's block is small.
+   */
+  template <int dim>
+  class ContactFriction
+  {
+  public:
+    /// The normal force magnitude at gap g and normal relative velocity v_n.
+    using NormalForce = std::function<double(const double gap, const double normal_velocity)>;
+
+    ContactFriction(const double coefficient, const double slip_velocity);
+
+    /**
+     * Add the friction of balls i and j, whose centres at the iterate are offset by
+     * X_i − X_j + shift (shift: the periodic image), to the force and torque rows of the
+     * free ones, its derivative to D (if given), and the force to contact_force.
+     */
+    void add(ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
+             const Tensor<1, dim> &shift, const NormalForce &normal_force,
+             const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+
+  private:
+    static constexpr unsigned int n_unknowns = RigidBody<dim>::n_unknowns;
+    /// The unknowns (V then ω) of ball i, then of ball j, or their force and torque rows.
+    using PairVector = Eigen::Matrix<double, 2 * n_unknowns, 1>;
+    /// The step of the central differences, relative to the slip velocity (the shortest
+    /// scale on which the force changes): truncation of order (10⁻⁴)² relative, and
+    /// round-off of order 10⁻¹⁶ |u| / (10⁻⁴ v_s), far below what Newton's convergence notices.
+    static constexpr double difference_step = 1e-4;
+
+    double coefficient, slip_velocity;
+
+    /// Force and torque rows (V then ω, ball i then j) of the friction for the unknowns u
+    /// (the same layout), the balls' histories taken from P_i, P_j.
+    PairVector rows(const Particle<dim> &P_i, const Particle<dim> &P_j,
+                    const Tensor<1, dim> &shift, const NormalForce &normal_force,
+                    const std::array<double, 3> &c, const PairVector &u) const;
+  };
+} // namespace fdparticle
+
+#endif

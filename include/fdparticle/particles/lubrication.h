@@ -1,0 +1,83 @@
+#ifndef fdparticle_particles_lubrication_h
+#define fdparticle_particles_lubrication_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <fdparticle/core/fluid.h>
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/particles/normal_contact.h>
+#include <fdparticle/particles/pair_search.h>
+#include <fdparticle/particles/particle_set.h>
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <memory>
+#include <optional>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * Lubrication correction (subsection Lubrication, doc/method.md §12): the part of the
+   * squeeze force of a thin gap that the mesh does not resolve, added between two balls
+   * and between a ball and a wall while the gap g is below the resolved gap g_r:
+   *
+   *   F_i = −(C(g) − C(g_r)) v_n n,  v_n = (V_i − V_j)·n,
+   *
+   * with the leading term of lubrication theory for the reduced radius
+   * a* = a_i a_j/(a_i + a_j) (a* = a_i at a wall): C(g) = 6π μ a*²/g for spheres
+   * (Cox & Brenner 1967) and C(g) = 3√2 π μ (a* / g)^{3/2} for cylinders, per unit length.
+   * Subtracting C(g_r) makes the correction vanish where the mesh takes over, so nothing
+   * is counted twice; below the minimum gap (surface roughness) C stays at its value
+   * there, so the force stays finite. It is implicit like the contact forces
+   * (NormalContact). Prescribed and fixed balls feel it in their contact force.
+   */
+  template <int dim>
+  class Lubrication
+  {
+  public:
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+
+    /// Resolve the 'auto' gaps from the finest cell edge and take the viscosity.
+    void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
+                    const double finest_cell_size);
+
+    bool enabled() const { return on; }
+
+    /// Subtract the correction at X^{n+1}(V), V from the force-balance rows of the free
+    /// balls, its derivative from D (if given), and add it to every ball's contact_force.
+    void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
+                              Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+
+    /// The correction's law at gap g and normal relative velocity v_n, for reduced radius
+    /// a*.
+    NormalLawValue law(const double reduced_radius, const double gap,
+                       const double normal_velocity) const;
+
+    /**
+     * The resolved gap of 'auto', in finest cell edges. From one cell up the resolved drag
+     * of a sphere approaching a wall converges with the mesh; below it, it falls short by
+     * an amount that hardly changes with the mesh (doc/particles.md, 'Lubrication').
+     */
+    static constexpr double resolved_gap_cells = 1.0;
+    /// The minimum gap of 'auto', relative to the reduced radius: a roughness of 0.1 %
+    /// keeps the force finite where the balls would touch.
+    static constexpr double minimum_gap_fraction = 1e-3;
+
+  private:
+    bool                  on = false;
+    std::optional<double> resolved_entry, minimum_entry;
+    double                resolved_gap = 0, viscosity = 0;
+    Domain<dim>           domain;
+    std::unique_ptr<PairSearch<dim>> search;
+
+    /// C(g) and C'(g) for reduced radius a*, g clamped to the minimum gap.
+    std::pair<double, double> coefficient(const double reduced_radius, const double gap) const;
+    double                    minimum_gap(const double reduced_radius) const;
+  };
+} // namespace fdparticle
+
+#endif

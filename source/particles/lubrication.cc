@@ -1,0 +1,117 @@
+#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/lubrication.h>
+
+#include <cmath>
+
+namespace fdparticle
+{
+  template <int dim>
+  void Lubrication<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Lubrication");
+    {
+      prm.declare_entry("Enabled", "false", Patterns::Bool(),
+                        "Add the squeeze force of gaps thinner than the mesh resolves, "
+                        "between particles and between a particle and a wall (leading term of "
+                        "lubrication theory, less its value at Resolved gap).");
+      prm.declare_entry("Resolved gap", "auto", Patterns::Anything(),
+                        "Gap below which the correction acts (a length), or 'auto': one "
+                        "finest cell edge, where the resolved flow stops following the "
+                        "squeeze (doc/particles.md, Lubrication).");
+      prm.declare_entry("Minimum gap", "auto", Patterns::Anything(),
+                        "Gap below which the correction stays at its value there (surface "
+                        "roughness; a length), or 'auto': 0.001 of the reduced radius "
+                        "a_i a_j / (a_i + a_j) (of the radius at a wall).");
+    }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void Lubrication<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    using namespace ParameterTools;
+    prm.enter_subsection("Lubrication");
+    on = prm.get_bool("Enabled");
+    resolved_entry = get_auto_or_number(prm, "Resolved gap", "Lubrication/Resolved gap",
+                                        Zero::refused);
+    minimum_entry =
+      get_auto_or_number(prm, "Minimum gap", "Lubrication/Minimum gap", Zero::refused);
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void Lubrication<dim>::initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
+                                    const double finest_cell_size)
+  {
+    this->domain = domain;
+    viscosity    = fluid.viscosity;
+    resolved_gap = resolved_entry.value_or(resolved_gap_cells * finest_cell_size);
+    search       = std::make_unique<PairSearch<dim>>(domain);
+  }
+
+  template <int dim>
+  double Lubrication<dim>::minimum_gap(const double reduced_radius) const
+  {
+    return minimum_entry.value_or(minimum_gap_fraction * reduced_radius);
+  }
+
+  template <int dim>
+  std::pair<double, double> Lubrication<dim>::coefficient(const double reduced_radius,
+                                                          const double gap) const
+  {
+    const double minimum      = minimum_gap(reduced_radius);
+    const double g            = std::max(gap, minimum);
+    const double slope_factor = (gap > minimum ? 1.0 : 0.0); // C' = 0 where g is clamped
+    if (dim == 3)
+      {
+        const double scale = 6 * numbers::PI * viscosity * reduced_radius * reduced_radius;
+        return {scale / g, slope_factor * -scale / (g * g)};
+      }
+    const double scale =
+      3 * std::sqrt(2.0) * numbers::PI * viscosity * std::pow(reduced_radius, 1.5);
+    return {scale * std::pow(g, -1.5), slope_factor * -1.5 * scale * std::pow(g, -2.5)};
+  }
+
+  template <int dim>
+  NormalLawValue Lubrication<dim>::law(const double reduced_radius, const double gap,
+                                       const double normal_velocity) const
+  {
+    if (gap >= resolved_gap)
+      return NormalLawValue{};
+    const auto [C, dC] = coefficient(reduced_radius, gap);
+    const double excess = C - coefficient(reduced_radius, resolved_gap).first;
+    return NormalLawValue{-excess * normal_velocity, -dC * normal_velocity, -excess};
+  }
+
+  template <int dim>
+  void Lubrication<dim>::add_to_particle_rows(ParticleSet<dim> &particles,
+                                             const std::array<double, 3> &c,
+                                             Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const
+  {
+    if (!on)
+      return;
+    Assert(search, ExcMessage("Lubrication::initialize was not called."));
+    std::vector<Point<dim>> x(particles.size());
+    std::vector<double>     r(particles.size());
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        x[k] = particles[k].position_after_step(c);
+        r[k] = particles[k].radius;
+        for (const auto &wall : domain.walls_near(x[k], r[k], resolved_gap))
+          {
+            const auto contact = NormalContact<dim>::wall(particles, k, wall.normal, wall.gap);
+            contact.add(particles, law(r[k], wall.gap, contact.normal_velocity()), c, r_p, D);
+          }
+      }
+    for (const auto &pair : search->pairs(x, r, resolved_gap))
+      {
+        const auto contact =
+          NormalContact<dim>::pair(particles, pair.i, pair.j, pair.offset, pair.gap);
+        const double reduced = r[pair.i] * r[pair.j] / (r[pair.i] + r[pair.j]);
+        contact.add(particles, law(reduced, pair.gap, contact.normal_velocity()), c, r_p, D);
+      }
+  }
+
+  template class Lubrication<2>;
+  template class Lubrication<3>;
+} // namespace fdparticle
