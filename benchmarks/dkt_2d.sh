@@ -5,29 +5,35 @@
 # gap below the repulsion's range, the time the trailer passes the leader) and plots the
 # trajectories and vertical velocities into doc/particles_dkt_2d.png.
 #
-# Usage (regenerate):  bash benchmarks/dkt_2d.sh [none]
-# EXE=PATH overrides the executable, WORK=DIR the work directory.
+# Usage (regenerate):  bash benchmarks/dkt_2d.sh [none] [spring-dashpot]
+# EXE=PATH overrides the executable, WORK=DIR the work directory; LEVELS=N the particle
+# refinement levels (3 by default; another value writes doc/particles_dkt_2d_lN.png).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
-work="${WORK:-$top/benchmarks/work/dkt_2d}"
+levels="${LEVELS:-3}"
+work="${WORK:-$top/benchmarks/work/dkt_2d-l$levels}"
+png="$top/doc/particles_dkt_2d.png"
+[ "$levels" = 3 ] || png="$top/doc/particles_dkt_2d_l$levels.png"
 mkdir -p "$work"
 models=(repulsion "$@")
 for model in "${models[@]}"; do
   sed -e "s|set Model = repulsion|set Model = $model|" \
       -e "s|set Directory    = output/dkt2d|set Directory    = $work/$model|" \
-      -e "s|set VTU interval = 10|set VTU interval = 0|" "$top/prm/dkt2d.prm" > "$work/$model.prm"
+      -e "s|set VTU interval = 10|set VTU interval = 0|" \
+      -e "s|set Particle refinement levels = 3|set Particle refinement levels = $levels|" \
+      "$top/prm/dkt2d.prm" > "$work/$model.prm"
   /usr/bin/time -f "%e s, %M kB peak" -o "$work/$model.time" "$exe" "$work/$model.prm" \
     > "$work/$model.log" 2>&1 || echo "$model: the run stopped: $(grep -m1 'error' "$work/$model.log")"
   echo "$model: $(cat "$work/$model.time")"
 done
-/usr/bin/python3 - "$work" "${models[@]}" <<'PY'
+/usr/bin/python3 - "$work" "$levels" "${models[@]}" <<'PY'
 import csv, math, sys
-work, models = sys.argv[1], sys.argv[2:]
+work, levels, models = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
 for model in models:
     rows = list(csv.DictReader(open(f"{work}/{model}/particles.csv")))
     a = [r for r in rows if r["id"] == "0"]; b = [r for r in rows if r["id"] == "1"]
-    h = 0.025
+    h = 0.2 / 2 ** levels  # the finest cell edge: 10 x 40 base cells of 0.2
     gap = [math.hypot(float(p["x"]) - float(q["x"]), float(p["y"]) - float(q["y"])) - 0.2
            for p, q in zip(a, b)]
     kiss = [float(a[i]["time"]) for i, g in enumerate(gap) if g < h]
@@ -42,8 +48,8 @@ for model in models:
 PY
 gnuplot <<GP
 set terminal pngcairo size 1100,500
-set output "$top/doc/particles_dkt_2d.png"
-set multiplot layout 1,2 title "Two disks, prm/dkt2d.prm (Collisions/Model = repulsion)"
+set output "$png"
+set multiplot layout 1,2 title "Two disks, prm/dkt2d.prm (Collisions/Model = repulsion, $levels particle refinement levels)"
 set xlabel "t [s]"; set ylabel "y [cm]"; set key bottom left
 plot "$work/repulsion.dat" u 1:3 w l lw 2 t "trailer (starts at y = 7.2)", \
      "" u 1:6 w l lw 2 t "leader (starts at y = 6.8)"
@@ -51,4 +57,4 @@ set ylabel "v_y [cm/s]"
 plot "$work/repulsion.dat" u 1:4 w l lw 2 t "trailer", "" u 1:7 w l lw 2 t "leader"
 unset multiplot
 GP
-echo "wrote doc/particles_dkt_2d.png"
+echo "wrote ${png#$top/}"

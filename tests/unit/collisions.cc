@@ -94,27 +94,8 @@ namespace
         double largest_error = 0;
         for (unsigned int i = 0; i < x.size(); ++i)
           for (unsigned int j = i + 1; j < x.size(); ++j)
-            {
-              // Nearest image by trying all shifts by −1, 0, +1 box lengths.
-              double best = std::numeric_limits<double>::max();
-              for (unsigned int s = 0; s < std::pow(3, dim); ++s)
-                {
-                  Tensor<1, dim> offset = x[i] - x[j];
-                  unsigned int   code   = s;
-                  bool           allowed = true;
-                  for (unsigned int d = 0; d < dim; ++d, code /= 3)
-                    {
-                      const int shift = int(code % 3) - 1;
-                      if (shift != 0 && !domain.is_periodic(d))
-                        allowed = false;
-                      offset[d] += shift * (upper[d] - lower[d]);
-                    }
-                  if (allowed)
-                    best = std::min(best, offset.norm());
-                }
-              if (best - r[i] - r[j] < reach)
-                expected.insert({i, j});
-            }
+            if (nearest_image_distance(x[i], x[j], domain) - r[i] - r[j] < reach)
+              expected.insert({i, j});
         std::set<std::pair<unsigned int, unsigned int>> found;
         for (const auto &p : PairSearch<dim>(domain).pairs(x, r, reach))
           {

@@ -127,24 +127,12 @@ namespace
   template <int dim>
   double smallest_gap(const ParticleSet<dim> &set, const Domain<dim> &domain)
   {
-    const Tensor<1, dim> length = domain.upper_corner() - domain.lower_corner();
-    double               smallest = std::numeric_limits<double>::max();
+    double smallest = std::numeric_limits<double>::max();
     for (unsigned int i = 0; i < set.size(); ++i)
       for (unsigned int j = i + 1; j < set.size(); ++j)
-        for (unsigned int s = 0; s < std::pow(3, dim); ++s)
-          {
-            Tensor<1, dim> offset = set[i].position - set[j].position;
-            unsigned int   code = s;
-            bool           allowed = true;
-            for (unsigned int d = 0; d < dim; ++d, code /= 3)
-              {
-                const int shift = int(code % 3) - 1;
-                allowed = allowed && (shift == 0 || domain.is_periodic(d));
-                offset[d] += shift * length[d];
-              }
-            if (allowed)
-              smallest = std::min(smallest, offset.norm() - set[i].radius - set[j].radius);
-          }
+        smallest = std::min(smallest, nearest_image_distance(set[i].position, set[j].position,
+                                                             domain) -
+                                        set[i].radius - set[j].radius);
     return smallest;
   }
 

@@ -4,7 +4,11 @@
 // The checks every unit test prints and counts: one line per check, "ok" or "FAIL" with the
 // value found and the value expected; summary() is the program's exit code.
 
+#include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+
+#include <algorithm>
+#include <limits>
 
 #include <cmath>
 #include <iomanip>
@@ -67,6 +71,34 @@ namespace unit_check
     return "set Dimension = " + std::to_string(dim) + "\nset Gravity = " + zero +
            "\nsubsection Geometry\n  set Lower corner = " + zero + "\n  set Upper corner = " + one +
            "\n  set Subdivisions = " + n + "\nend\n";
+  }
+
+  /**
+   * |a − b| to the nearest periodic image of b, found by brute force: every shift by −1,
+   * 0 or +1 box lengths in the periodic directions of the domain (a fdparticle::Domain).
+   * The reference the neighbour searches are checked against.
+   */
+  template <int dim, typename Domain>
+  double nearest_image_distance(const dealii::Point<dim> &a, const dealii::Point<dim> &b,
+                                const Domain &domain)
+  {
+    const dealii::Tensor<1, dim> length = domain.upper_corner() - domain.lower_corner();
+    double                       best = std::numeric_limits<double>::max();
+    for (unsigned int s = 0; s < std::pow(3, dim); ++s)
+      {
+        dealii::Tensor<1, dim> offset = a - b;
+        unsigned int           code = s;
+        bool                   allowed = true;
+        for (unsigned int d = 0; d < dim; ++d, code /= 3)
+          {
+            const int shift = int(code % 3) - 1;
+            allowed = allowed && (shift == 0 || domain.is_periodic(d));
+            offset[d] += shift * length[d];
+          }
+        if (allowed)
+          best = std::min(best, offset.norm());
+      }
+    return best;
   }
 
   /// Print the tally; 0 if every check passed (use as main's return value).
