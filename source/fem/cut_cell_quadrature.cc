@@ -94,18 +94,15 @@ namespace fdparticle
                                             int &                   particle) const
   {
     particle = -1;
-    for (unsigned int k = 0; k < particles.size(); ++k)
-      {
-        const Particle<dim> &p = particles[k];
-        if (p.distance_to(cell->bounding_box()) >= p.radius)
-          continue;
-        particle = k;
-        bool all_inside = true;
-        for (const unsigned int v : cell->vertex_indices())
-          all_inside = all_inside && p.contains(cell->vertex(v));
-        return all_inside ? CellKind::inside : CellKind::cut;
-      }
-    return CellKind::fluid;
+    const std::vector<unsigned int> balls = particles.meeting(cell->bounding_box());
+    if (balls.empty())
+      return CellKind::fluid;
+    particle = balls.front();
+    const Particle<dim> &p = particles[particle];
+    bool all_inside = true;
+    for (const unsigned int v : cell->vertex_indices())
+      all_inside = all_inside && p.contains(cell->vertex(v));
+    return all_inside ? CellKind::inside : CellKind::cut;
   }
 
   template <int dim>
@@ -123,10 +120,7 @@ namespace fdparticle
       return;
     // A cell that two balls meet (near contact) keeps the Gauss rule: the level-set rule
     // here describes one ball.
-    unsigned int n_meeting = 0;
-    for (unsigned int k = 0; k < particles.size(); ++k)
-      n_meeting += (particles[k].distance_to(cell->bounding_box()) < particles[k].radius);
-    if (n_meeting == 1)
+    if (particles.meeting(cell->bounding_box()).size() == 1)
       generate_level_set_rule(cell, particles[particle], particle, rule);
   }
 

@@ -4,6 +4,7 @@
 #include <fdparticle/particles/random_packing.h>
 #include <fdparticle/particles/particle_set.h>
 
+#include <algorithm>
 #include <iomanip>
 #include <istream>
 #include <ostream>
@@ -149,6 +150,8 @@ namespace fdparticle
       particles[k].id = k;
 
     check_positions(domain, 0.0);
+    this->domain = domain;
+    update_index();
 
     n_block_unknowns = 0;
     for (Particle<dim> &p : particles)
@@ -214,10 +217,61 @@ namespace fdparticle
   template <int dim>
   int ParticleSet<dim>::locate(const Point<dim> &x) const
   {
+    Assert(index_is_current(), ExcMessage("The particle index is out of date."));
+    int owner = -1;
+    // A ball containing x has its centre within R_max of x: in x's bin or an adjacent one.
+    index->for_each_near(x, [&](const unsigned int k) {
+      if ((owner < 0 || int(k) < owner) && particles[k].contains(x))
+        owner = k;
+    });
+    return owner;
+  }
+
+  template <int dim>
+  std::vector<unsigned int> ParticleSet<dim>::meeting(const BoundingBox<dim> &box) const
+  {
+    Assert(index_is_current(), ExcMessage("The particle index is out of date."));
+    // A ball meeting the box has its centre within R_max of it. Balls do not cross a
+    // periodic boundary (check_positions), so the box needs no periodic image.
+    Point<dim> lower = box.get_boundary_points().first, upper = box.get_boundary_points().second;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lower[d] -= largest_radius;
+        upper[d] += largest_radius;
+      }
+    std::vector<unsigned int> result;
+    index->for_each_in_box(lower, upper, [&](const unsigned int k) {
+      if (particles[k].distance_to(box) < particles[k].radius)
+        result.push_back(k);
+    });
+    std::sort(result.begin(), result.end());
+    return result;
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::update_index()
+  {
+    largest_radius = 0;
+    for (const Particle<dim> &p : particles)
+      largest_radius = std::max(largest_radius, p.radius);
+    index.emplace(domain, 2 * largest_radius);
+    indexed_centres.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
-      if (particles[k].contains(x))
-        return k;
-    return -1;
+      {
+        index->insert(k, particles[k].geometry_center);
+        indexed_centres[k] = particles[k].geometry_center;
+      }
+  }
+
+  template <int dim>
+  bool ParticleSet<dim>::index_is_current() const
+  {
+    if (!index || indexed_centres.size() != particles.size())
+      return false;
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      if (indexed_centres[k] != particles[k].geometry_center)
+        return false;
+    return true;
   }
 
   template <int dim>
@@ -225,6 +279,7 @@ namespace fdparticle
   {
     for (Particle<dim> &p : particles)
       p.geometry_center = time.extrapolate(p.position, p.position_old);
+    update_index();
   }
 
   template <int dim>
@@ -315,6 +370,7 @@ namespace fdparticle
         in >> q[0] >> q[1] >> q[2] >> q[3];
         p.geometry_center = p.position;
       }
+    update_index();
   }
 
   template class ParticleSet<2>;

@@ -159,7 +159,14 @@ namespace fdparticle
   } // namespace
 
   DirectSolver::DirectSolver()  = default;
-  DirectSolver::~DirectSolver() = default;
+  DirectSolver::~DirectSolver()
+  {
+    // The factorization refers to K: end it first (members go in reverse order of
+    // declaration, which would destroy K before the solver that MUMPS still reads it
+    // through while it shuts down).
+    solver.reset();
+    problem.reset();
+  }
 
   void DirectSolver::declare_parameters(ParameterHandler &prm)
   {

@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <string>
 
 using namespace dealii;
@@ -189,6 +190,39 @@ namespace
       }
     check(same_difference == 0, "the same seed gives the same balls");
     check(other_difference > 0, "another seed gives other balls");
+
+    // The cell-to-particles index against trying every ball: random boxes from a tenth of
+    // a ball to a whole coarse region, and random points.
+    std::mt19937                           generator(11 + dim);
+    std::uniform_real_distribution<double> uniform(0, 1);
+    bool same_meeting = true, same_owner = true;
+    unsigned int n_met = 0;
+    for (unsigned int trial = 0; trial < 2000; ++trial)
+      {
+        Point<dim> a, b;
+        const double size = std::pow(10.0, -2 + 2.5 * uniform(generator));
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double l = domain.lower_corner()[d], u = domain.upper_corner()[d];
+            a[d] = l + (u - l) * uniform(generator);
+            b[d] = std::min(u, a[d] + size);
+          }
+        const BoundingBox<dim>    box({a, b});
+        std::vector<unsigned int> expected;
+        for (unsigned int k = 0; k < set.size(); ++k)
+          if (set[k].distance_to(box) < set[k].radius)
+            expected.push_back(k);
+        same_meeting = same_meeting && set.meeting(box) == expected;
+        n_met += expected.size();
+        int owner = -1;
+        for (unsigned int k = 0; k < set.size() && owner < 0; ++k)
+          if (set[k].contains(a))
+            owner = k;
+        same_owner = same_owner && set.locate(a) == owner;
+      }
+    check(same_meeting && n_met > 100, "meeting(box) lists the balls that meet the box (" +
+                                          std::to_string(n_met) + " in 2000 boxes)");
+    check(same_owner, "locate(x) finds the ball containing x");
 
     ParticleSet<dim> jammed;
     error = parse<dim>(periodic, random(7, 20 * count), jammed, domain);

@@ -36,6 +36,12 @@ namespace fdparticle
     template <typename Function>
     void for_each_near(const Point<dim> &x, const Function &f) const;
 
+    /// Call f(k) for every point k in the bins that the box [lower, upper] reaches, each
+    /// once (no periodic wrap: the box is taken as it lies).
+    template <typename Function>
+    void for_each_in_box(const Point<dim> &lower, const Point<dim> &upper,
+                         const Function &f) const;
+
     /// a − b, to the nearest periodic image of b.
     Tensor<1, dim> offset(const Point<dim> &a, const Point<dim> &b) const;
 
@@ -83,6 +89,50 @@ namespace fdparticle
         unsigned int d = 0;
         while (d < dim && ++choice[d] == near[d].size())
           choice[d++] = 0;
+        if (d == dim)
+          break;
+      }
+  }
+
+  template <int dim>
+  template <typename Function>
+  void CellList<dim>::for_each_in_box(const Point<dim> &box_lower, const Point<dim> &box_upper,
+                                      const Function &f) const
+  {
+    const Bin first = bin_of(box_lower), last = bin_of(box_upper);
+    double    n_reached = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_reached *= last[d] - first[d] + 1;
+    const auto inside = [&](const Bin &b) {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (b[d] < first[d] || b[d] > last[d])
+          return false;
+      return true;
+    };
+    // A box over more bins than hold points (a coarse cell, small balls) visits the
+    // occupied bins instead of the reached ones.
+    if (n_reached > members.size())
+      {
+        for (const auto &[bin, points] : members)
+          if (inside(bin))
+            for (const unsigned int k : points)
+              f(k);
+        return;
+      }
+    Bin b = first;
+    while (true)
+      {
+        const auto it = members.find(b);
+        if (it != members.end())
+          for (const unsigned int k : it->second)
+            f(k);
+        // Next bin, odometer style.
+        unsigned int d = 0;
+        while (d < dim && ++b[d] > last[d])
+          {
+            b[d] = first[d];
+            ++d;
+          }
         if (d == dim)
           break;
       }

@@ -8,6 +8,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <fdparticle/fem/domain.h>
+#include <fdparticle/particles/cell_list.h>
 #include <fdparticle/particles/rigid_body.h>
 #include <fdparticle/core/time_stepper.h>
 
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <iosfwd>
 #include <string>
+#include <optional>
 #include <vector>
 
 namespace fdparticle
@@ -140,8 +142,13 @@ namespace fdparticle
     /// Mean velocity of the free particles, as three components (0 if there are none).
     Tensor<1, 3> mean_free_velocity() const;
 
-    /// Index of the particle containing x during this step, or -1 (fluid).
+    /// Index of the particle containing x during this step, or -1 (fluid); the lowest
+    /// index if two contain it. O(1) per point: only the balls of x's bins are tried.
     int locate(const Point<dim> &x) const;
+
+    /// The balls that meet the box during this step, in increasing order. O(1) per box
+    /// of the size of a ball: only the balls of the bins the box reaches are tried.
+    std::vector<unsigned int> meeting(const BoundingBox<dim> &box) const;
 
     /// Put each ball at its (extrapolated) position for the coming step.
     void prepare_step(const TimeStepper &time);
@@ -168,6 +175,18 @@ namespace fdparticle
 
   private:
     std::vector<Particle<dim>> particles;
+    Domain<dim>                domain;
+    /**
+     * The balls' geometry centres in bins at least 2 R_max wide, rebuilt whenever the
+     * centres move (update_index): the cell-to-particles lookups of the per-cell and
+     * per-point loops (locate, meeting) then cost O(1) instead of O(N) each.
+     */
+    std::optional<CellList<dim>> index;
+    /// The centres the index was built with, to assert that it is current.
+    std::vector<Point<dim>> indexed_centres;
+    double                  largest_radius = 0;
+    void                    update_index();
+    bool                    index_is_current() const;
     AngularVelocityClosure     angular_closure = AngularVelocityClosure::torque_balance;
     unsigned int               n_block_unknowns = 0;
   };
