@@ -254,7 +254,10 @@ namespace fdparticle
     largest_radius = 0;
     for (const Particle<dim> &p : particles)
       largest_radius = std::max(largest_radius, p.radius);
-    index.emplace(domain, 2 * largest_radius);
+    // Without balls any width does: one bin across the box.
+    index.emplace(domain, largest_radius > 0 ?
+                            2 * largest_radius :
+                            (domain.upper_corner() - domain.lower_corner()).norm());
     indexed_centres.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
