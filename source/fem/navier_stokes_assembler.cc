@@ -7,6 +7,9 @@
 #include <fdparticle/core/parameter_tools.h>
 #include <fdparticle/particles/rigid_body.h>
 
+#include <algorithm>
+#include <numeric>
+
 namespace fdparticle
 {
   namespace
@@ -40,6 +43,15 @@ namespace fdparticle
           inside += (rule.owner[q] >= 0 ? fv.JxW(q) : 0.0);
         }
       return inside / total;
+    }
+
+    /// The unknowns of a free particle: its columns of B and Cᵀ.
+    template <int dim>
+    std::vector<types::global_dof_index> unknowns_of(const Particle<dim> &particle)
+    {
+      std::vector<types::global_dof_index> unknowns(RigidBody<dim>::n_unknowns);
+      std::iota(unknowns.begin(), unknowns.end(), particle.first_unknown);
+      return unknowns;
     }
   } // namespace
 
@@ -114,6 +126,8 @@ namespace fdparticle
     AssemblyCopy<dim>         copy(n, particles.size());
     std::vector<types::global_dof_index> dof_indices(n);
     typename CutCellQuadrature<dim>::CellRule rule;
+    // The particle unknowns, the columns of B and Cᵀ, are not DoFs: nothing constrains them.
+    const AffineConstraints<double> no_constraints;
 
     system.zero(with_matrix);
     // The pressure mass over each cell and its fluid part, for the iterative solver's
@@ -181,8 +195,8 @@ namespace fdparticle
               copy.touching.push_back(k);
               if (with_matrix && particles[k].first_unknown != numbers::invalid_unsigned_int)
                 {
-                  copy.border_B[k].assign(RB::n_unknowns, Vector<double>(n));
-                  copy.border_C[k].assign(RB::n_unknowns, Vector<double>(n));
+                  copy.border_B[k].reinit(n, RB::n_unknowns);
+                  copy.border_C[k].reinit(n, RB::n_unknowns);
                 }
             }
 
@@ -235,13 +249,14 @@ namespace fdparticle
                                                    system.r_fe);
             for (const int k : copy.touching)
               if (particles[k].first_unknown != numbers::invalid_unsigned_int)
-                for (unsigned int j = 0; j < RB::n_unknowns; ++j)
-                  {
-                    constraints.distribute_local_to_global(copy.border_B[k][j], dof_indices,
-                                                           system.B[particles[k].first_unknown + j]);
-                    constraints.distribute_local_to_global(copy.border_C[k][j], dof_indices,
-                                                           system.C[particles[k].first_unknown + j]);
-                  }
+                {
+                  const auto columns = unknowns_of(particles[k]);
+                  constraints.distribute_local_to_global(copy.border_B[k], dof_indices,
+                                                         no_constraints, columns, system.B);
+                  constraints.distribute_local_to_global(copy.border_C[k], dof_indices,
+                                                         no_constraints, columns,
+                                                         system.C_transposed);
+                }
           }
         else
           constraints.distribute_local_to_global(copy.rhs, dof_indices, system.r_fe);
@@ -253,10 +268,11 @@ namespace fdparticle
     if (with_matrix)
       {
         system.A.compress(VectorOperation::add);
-        for (auto &b : system.B)
-          b.compress(VectorOperation::add);
-        for (auto &cc : system.C)
-          cc.compress(VectorOperation::add);
+        if (system.n_particle_unknowns() > 0)
+          {
+            system.B.compress(VectorOperation::add);
+            system.C_transposed.compress(VectorOperation::add);
+          }
       }
 
     ParticleIntegrals<dim>::sum_over_ranks(copy.integrals, dof_handler.get_communicator());
@@ -270,7 +286,8 @@ namespace fdparticle
                                                const IndexSet &                 locally_relevant,
                                                const AffineConstraints<double> &mesh_constraints) const
   {
-    bool any_inside = false;
+    ParticleSupport support;
+    bool            any_inside = false;
     // The λ DoFs of the cells a particle meets, and the masters of those among them that
     // hanging nodes or periodicity tie to other DoFs: λ lives in the conforming space, whose
     // basis function of a master includes its slaves' pieces, so the master's support meets
@@ -299,6 +316,12 @@ namespace fdparticle
             if (!rule.has_particle_point())
               continue;
           }
+        std::vector<int> owners(rule.owner);
+        std::sort(owners.begin(), owners.end());
+        owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+        for (const int k : owners)
+          if (k >= 0 && particles[k].first_unknown != numbers::invalid_unsigned_int)
+            support.free_particle_cells.emplace_back(cell, k);
         cell->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < dof_indices.size(); ++i)
           {
@@ -326,7 +349,6 @@ namespace fdparticle
     marks.compress(VectorOperation::add);
     TrilinosWrappers::MPI::Vector marker(dof_handler.locally_owned_dofs(), ghosts, comm);
     marker = marks;
-    ParticleSupport support;
     support.active_multipliers.set_size(dof_handler.n_dofs());
     for (const auto i : locally_relevant)
       if (marker[i] > 0)
@@ -336,6 +358,39 @@ namespace fdparticle
       interior_pressure.enabled() &&
       Utilities::MPI::logical_or(any_inside, dof_handler.get_communicator());
     return support;
+  }
+
+  template <int dim>
+  TrilinosWrappers::SparsityPattern
+  NavierStokesAssembler<dim>::border_pattern(const ParticleSupport &          support,
+                                             const AffineConstraints<double> &constraints,
+                                             const IndexSet &                 locally_owned,
+                                             const IndexSet &                 locally_relevant,
+                                             const MPI_Comm                   comm) const
+  {
+    TrilinosWrappers::SparsityPattern pattern =
+      NewtonSystem::border_pattern(locally_owned, locally_relevant, particles.n_unknowns(), comm);
+    if (particles.n_unknowns() == 0)
+      return pattern;
+    // Rows: the multiplier DoFs (the pairing, doc/method.md §5) and the velocity DoFs (the
+    // kinematic closure's ∂ω/∂u); the pressure has no particle coupling.
+    std::vector<unsigned int> coupled;
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      if (Introspection<dim>::field(fe.system_to_component_index(i).first) !=
+          Introspection<dim>::Field::pressure)
+        coupled.push_back(i);
+    const AffineConstraints<double>      no_constraints;
+    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell()), rows(coupled.size());
+    for (const auto &[cell, k] : support.free_particle_cells)
+      {
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < coupled.size(); ++i)
+          rows[i] = dof_indices[coupled[i]];
+        constraints.add_entries_local_to_global(rows, no_constraints, unknowns_of(particles[k]),
+                                                pattern, /*keep_constrained_entries=*/false);
+      }
+    pattern.compress();
+    return pattern;
   }
 
   template <int dim>

@@ -226,13 +226,21 @@ namespace fdparticle
     const unsigned int m   = op->n_particle_unknowns();
     const unsigned int n_l = owned[multiplier_block].n_elements();
     Eigen::MatrixXd    S   = system->D;
+    const auto         B   = NewtonSystem::columns(system->B);
+    const unsigned int o_l = local_offset[multiplier_block];
     for (unsigned int j = 0; j < m; ++j)
       {
-        std::copy_n(values(system->B[j]) + local_offset[multiplier_block], n_l, values(l_in));
+        // B's column j on the multiplier block (its only non-zero rows).
+        l_in = 0;
+        for (const auto &[row, value] : B[j])
+          {
+            Assert(row >= int(o_l) && row < int(o_l + n_l), ExcInternalError());
+            values(l_in)[row - o_l] = value;
+          }
         multiplier_amg.vmult(l_out, l_in);
         full = 0;
         std::copy_n(values(l_out), n_l, values(full) + local_offset[multiplier_block]);
-        S.col(j) -= op->border_product(full);
+        S.col(j) -= system->border_product(full);
       }
     if (m == 0)
       return;
@@ -259,9 +267,9 @@ namespace fdparticle
       {
         full = 0;
         std::copy_n(values(l_out), n_l, values(full) + o_l);
-        y    = particle_schur.solve(op->particle_part(src) - op->border_product(full));
+        y    = particle_schur.solve(op->particle_part(src) - system->border_product(full));
         full = 0;
-        op->add_border(full, y);
+        system->add_border(y, full);
         double *      li = values(l_in);
         const double *by = values(full) + o_l;
         for (unsigned int i = 0; i < n_l; ++i)

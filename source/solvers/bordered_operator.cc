@@ -9,11 +9,9 @@ namespace fdparticle
 {
   BorderedOperator::BorderedOperator(const NewtonSystem &system)
     : system(system)
-    , particle_dofs(system.D.rows())
-  {
-    if (Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
-      particle_dofs.add_range(0, system.D.rows());
-  }
+    , particle_dofs(NewtonSystem::particle_unknowns(system.n_particle_unknowns(),
+                                                    system.r_fe.get_mpi_communicator()))
+  {}
 
   void BorderedOperator::reinit_vector(BlockVector &v) const
   {
@@ -39,41 +37,11 @@ namespace fdparticle
       std::copy_n(y.data(), y.size(), v.block(1).trilinos_vector()[0]);
   }
 
-  void BorderedOperator::add_border(TrilinosWrappers::MPI::Vector &x,
-                                    const Eigen::VectorXd &        y) const
-  {
-    double *  xv      = x.trilinos_vector()[0];
-    const int n_local = x.trilinos_vector().MyLength();
-    for (unsigned int j = 0; j < system.B.size(); ++j)
-      if (y[j] != 0)
-        {
-          const double *b = system.B[j].trilinos_vector()[0];
-          for (int k = 0; k < n_local; ++k)
-            xv[k] += y[j] * b[k];
-        }
-  }
-
-  Eigen::VectorXd BorderedOperator::border_product(const TrilinosWrappers::MPI::Vector &x) const
-  {
-    const unsigned int  m = system.C.size();
-    std::vector<double> g(m, 0.0);
-    const double *      xv      = x.trilinos_vector()[0];
-    const int           n_local = x.trilinos_vector().MyLength();
-    for (unsigned int i = 0; i < m; ++i)
-      {
-        const double *c = system.C[i].trilinos_vector()[0];
-        for (int k = 0; k < n_local; ++k)
-          g[i] += c[k] * xv[k];
-      }
-    Utilities::MPI::sum(g, system.r_fe.get_mpi_communicator(), g);
-    return Eigen::Map<const Eigen::VectorXd>(g.data(), m);
-  }
-
   void BorderedOperator::vmult(BlockVector &dst, const BlockVector &src) const
   {
     const Eigen::VectorXd y = particle_part(src);
     system.A.vmult(dst.block(0), src.block(0));
-    add_border(dst.block(0), y);
-    set_particle_part(dst, border_product(src.block(0)) + system.D * y);
+    system.add_border(y, dst.block(0));
+    set_particle_part(dst, system.border_product(src.block(0)) + system.D * y);
   }
 } // namespace fdparticle

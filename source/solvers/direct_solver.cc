@@ -244,25 +244,16 @@ namespace fdparticle
             values[r].push_back(v[k]);
           }
       }
-    for (unsigned int j = 0; j < m; ++j)
-      {
-        const double *b = system.B[j].trilinos_vector()[0];
-        for (int r = 0; r < n_local; ++r)
-          if (b[r] != 0)
-            {
-              columns[r].push_back(n + j);
-              values[r].push_back(b[r]);
-            }
-      }
+    NewtonSystem::for_each_entry(system.B, [&](const int r, const unsigned int j, const double v) {
+      columns[r].push_back(n + j);
+      values[r].push_back(v);
+    });
     // The rows of C: their non-zeros, gathered on rank 0 as (row, column, value).
     std::vector<double> local_c;
-    for (unsigned int i = 0; i < m; ++i)
-      {
-        const Epetra_Vector &c = *system.C[i].trilinos_vector()(0);
-        for (int r = 0; r < n_local; ++r)
-          if (c[r] != 0)
-            local_c.insert(local_c.end(), {double(i), double(c.Map().GID(r)), c[r]});
-      }
+    NewtonSystem::for_each_entry(system.C_transposed,
+                                 [&](const int r, const unsigned int i, const double v) {
+                                   local_c.insert(local_c.end(), {double(i), double(E.GRID(r)), v});
+                                 });
     const std::vector<std::vector<double>> all_c = dealii::Utilities::MPI::gather(comm, local_c, 0);
     if (root)
       {
@@ -487,9 +478,7 @@ namespace fdparticle
                                                         TrilinosWrappers::MPI::Vector &x,
                                                         Eigen::VectorXd &y)
   {
-    const auto &B = system.B;
-    const auto &C = system.C;
-    const unsigned int m = B.size();
+    const unsigned int m = system.n_particle_unknowns();
     // Z = A⁻¹B and the LU of S = D − C Z belong to the Jacobian: computed with its first
     // solve, kept for the later ones (modified Newton), which then need one right-hand side.
     const bool         new_schur = !schur_done && m > 0;
@@ -504,8 +493,11 @@ namespace fdparticle
       const double *r = system.r_fe.trilinos_vector()[0];
       for (int i = 0; i < n_local; ++i)
         rhs[0][i] = -r[i];
-      for (unsigned int j = 1; j < n_rhs; ++j)
-        std::copy_n(B[j - 1].trilinos_vector()[0], n_local, rhs[j]);
+      if (new_schur)
+        NewtonSystem::for_each_entry(system.B,
+                                     [&](const int r, const unsigned int j, const double v) {
+                                       rhs[j + 1][r] = v;
+                                     });
     }
     const MPI_Comm comm = system.r_fe.get_mpi_communicator();
     forward_backward(rhs, sol, comm);
@@ -520,18 +512,11 @@ namespace fdparticle
 
     // G = C·[z0(, Z_1, …, Z_m)]: local products, then one reduction.
     std::vector<double> G(m * n_rhs, 0.0);
-    for (unsigned int i = 0; i < m; ++i)
-      {
-        const double *c = C[i].trilinos_vector()[0];
-        for (unsigned int j = 0; j < n_rhs; ++j)
-          {
-            const double *z   = sol[j];
-            double        sum = 0;
-            for (int k = 0; k < n_local; ++k)
-              sum += c[k] * z[k];
-            G[i * n_rhs + j] = sum;
-          }
-      }
+    NewtonSystem::for_each_entry(system.C_transposed,
+                                 [&](const int r, const unsigned int i, const double v) {
+                                   for (unsigned int j = 0; j < n_rhs; ++j)
+                                     G[i * n_rhs + j] += v * sol[j][r];
+                                 });
     dealii::Utilities::MPI::sum(G, comm, G);
 
     if (new_schur)

@@ -68,12 +68,31 @@ namespace fdparticle
     return Utilities::MPI::min(same ? 1 : 0, sparsity.get_mpi_communicator()) == 1;
   }
 
+  IndexSet NewtonSystem::particle_unknowns(const unsigned int m, const MPI_Comm comm)
+  {
+    IndexSet unknowns(m);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      unknowns.add_range(0, m);
+    return unknowns;
+  }
+
+  TrilinosWrappers::SparsityPattern NewtonSystem::border_pattern(const IndexSet &   owned,
+                                                                 const IndexSet &   relevant,
+                                                                 const unsigned int m,
+                                                                 const MPI_Comm     comm)
+  {
+    // Without particle unknowns, the empty pattern: B and Cᵀ stay unallocated.
+    if (m == 0)
+      return TrilinosWrappers::SparsityPattern();
+    return TrilinosWrappers::SparsityPattern(owned, particle_unknowns(m, comm), relevant, comm);
+  }
+
   void NewtonSystem::reinit(const IndexSet &                         owned,
                             const IndexSet &                         relevant,
                             const TrilinosWrappers::SparsityPattern &sparsity,
                             const bool                               new_pattern,
-                            const MPI_Comm                           comm,
-                            const unsigned int                       m)
+                            const TrilinosWrappers::SparsityPattern &border,
+                            const MPI_Comm                           comm)
   {
     if (new_pattern)
       A.reinit(sparsity);
@@ -82,12 +101,19 @@ namespace fdparticle
     // Writable ghost entries: cells at a partition boundary add into DoFs owned by a
     // neighbour, and compress(add) ships them there.
     r_fe.reinit(owned, relevant, comm, /*vector_writable=*/true);
-    // Fresh copies, not assignment: assigning a Trilinos vector to one whose old layout has
-    // the same size and local range imports into that old layout, and after a mesh
-    // adaptation in parallel the owned index sets can differ with equal ranges, so the
-    // border vectors would keep the previous partition.
-    B = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
-    C = std::vector<TrilinosWrappers::MPI::Vector>(m, r_fe);
+    const unsigned int m = border.n_cols();
+    if (m > 0)
+      {
+        B.reinit(border);
+        C_transposed.reinit(border);
+        Assert(B.trilinos_matrix().RowMap().SameAs(r_fe.trilinos_vector().Map()),
+               ExcMessage("B's rows must be numbered locally as r_fe's entries."));
+      }
+    else
+      {
+        B.clear();
+        C_transposed.clear();
+      }
     D.setZero(m, m);
     r_p.setZero(m);
   }
@@ -99,15 +125,43 @@ namespace fdparticle
     if (!with_matrix)
       return;
     A = 0;
-    for (auto &b : B)
-      b = 0;
-    for (auto &c : C)
-      c = 0;
+    if (B.m() > 0)
+      {
+        B = 0;
+        C_transposed = 0;
+      }
     D.setZero();
   }
 
   double NewtonSystem::residual_norm() const
   {
     return std::sqrt(r_fe.norm_sqr() + r_p.squaredNorm());
+  }
+
+  void NewtonSystem::add_border(const Eigen::VectorXd &y, TrilinosWrappers::MPI::Vector &x) const
+  {
+    AssertDimension(y.size(), n_particle_unknowns());
+    double *xv = x.trilinos_vector()[0];
+    for_each_entry(B, [&](const int r, const unsigned int j, const double v) { xv[r] += v * y[j]; });
+  }
+
+  Eigen::VectorXd NewtonSystem::border_product(const TrilinosWrappers::MPI::Vector &x) const
+  {
+    std::vector<double> g(n_particle_unknowns(), 0.0);
+    const double *      xv = x.trilinos_vector()[0];
+    for_each_entry(C_transposed,
+                   [&](const int r, const unsigned int i, const double v) { g[i] += v * xv[r]; });
+    Utilities::MPI::sum(g, r_fe.get_mpi_communicator(), g);
+    return Eigen::Map<const Eigen::VectorXd>(g.data(), g.size());
+  }
+
+  std::vector<std::vector<std::pair<int, double>>>
+  NewtonSystem::columns(const TrilinosWrappers::SparseMatrix &border)
+  {
+    std::vector<std::vector<std::pair<int, double>>> result(border.n());
+    for_each_entry(border, [&](const int r, const unsigned int j, const double v) {
+      result[j].emplace_back(r, v);
+    });
+    return result;
   }
 } // namespace fdparticle

@@ -152,8 +152,8 @@ namespace
       if (with_matrix)
         {
           copy.touching.push_back(0);
-          copy.border_B[0].assign(RigidBody<dim>::n_unknowns, Vector<double>(n));
-          copy.border_C[0].assign(RigidBody<dim>::n_unknowns, Vector<double>(n));
+          copy.border_B[0].reinit(n, RigidBody<dim>::n_unknowns);
+          copy.border_C[0].reinit(n, RigidBody<dim>::n_unknowns);
         }
       const std::vector<const AssemblyTerm<dim> *> terms{&fluid_momentum, &interior_pressure,
                                                          &pairing, &penalties};
@@ -258,7 +258,7 @@ namespace
           matrix.add((up.rhs[i] - down.rhs[i]) / (2 * fd_step), at.matrix(i, j));
         const auto r_up = particle_rows(up), r_down = particle_rows(down);
         for (unsigned int k = 0; k < m; ++k)
-          rows.add((r_up[k] - r_down[k]) / (2 * fd_step), at.border_C[0][k][j]);
+          rows.add((r_up[k] - r_down[k]) / (2 * fd_step), at.border_C[0](j, k));
       }
     matrix.report(name + "cell matrix = d(cell residual)/d(u, lambda, p)");
     rows.report(name + "border rows C = d(particle integrals)/d(u, lambda)");
@@ -277,7 +277,7 @@ namespace
         const auto up = cell.assemble(cell.coefficients, plus, false);
         const auto down = cell.assemble(cell.coefficients, minus, false);
         for (unsigned int i = 0; i < n; ++i)
-          columns.add((up.rhs[i] - down.rhs[i]) / (2 * fd_step), at.border_B[0][k][i]);
+          columns.add((up.rhs[i] - down.rhs[i]) / (2 * fd_step), at.border_B[0](i, k));
         // D from the particle rows alone (their dependence on λ and u is C).
         const Eigen::VectorXd d_r =
           (cell.particle_residual(cell.coefficients, plus) -

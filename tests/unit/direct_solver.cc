@@ -69,7 +69,16 @@ namespace
     const bool                              new_pattern = !s.has_pattern(pattern);
     if (new_pattern)
       solver.pattern_changed();
-    s.reinit(all, all, pattern, new_pattern, MPI_COMM_WORLD, m);
+    // B and C couple the particle unknowns to the velocities.
+    TrilinosWrappers::SparsityPattern border = NewtonSystem::border_pattern(all, all, m, MPI_COMM_WORLD);
+    if (m > 0)
+      {
+        for (unsigned int i = 0; i < n_u; ++i)
+          for (unsigned int j = 0; j < m; ++j)
+            border.add(i, j);
+        border.compress();
+      }
+    s.reinit(all, all, pattern, new_pattern, border, MPI_COMM_WORLD);
   }
 
   /// Fill A, B, C, D and the residuals; 'shift' changes the values, not the pattern.
@@ -105,15 +114,15 @@ namespace
       for (unsigned int i = 0; i < n_u; ++i)
         {
           const double b = std::sin(1.0 + i + 7.0 * j), c = std::cos(2.0 + 3.0 * i + j);
-          s.B[j][i] = b;
-          s.C[j][i] = c;
+          s.B.set(i, j, b);
+          s.C_transposed.set(i, j, c);
           full(i, n + j) = b;
           full(n + j, i) = c;
         }
-    for (unsigned int j = 0; j < m; ++j)
+    if (m > 0)
       {
-        s.B[j].compress(VectorOperation::insert);
-        s.C[j].compress(VectorOperation::insert);
+        s.B.compress(VectorOperation::insert);
+        s.C_transposed.compress(VectorOperation::insert);
       }
     for (unsigned int i = 0; i < n; ++i)
       s.r_fe[i] = std::sin(0.3 * i) + shift;

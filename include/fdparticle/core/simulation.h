@@ -75,8 +75,9 @@ namespace fdparticle
     void   setup_blocks();
     /// Refine around the particles (with transfer of the solution and its history).
     void   adapt_mesh(const bool transfer);
-    void   make_constraints();
-    void   setup_matrix();
+    /// The constraints of a step; returns where the particles are, as setup_matrix needs it.
+    typename NavierStokesAssembler<dim>::ParticleSupport make_constraints();
+    void setup_matrix(const typename NavierStokesAssembler<dim>::ParticleSupport &support);
     void   set_initial_pressure();
     /// Newton's method for the step prepared by do_time_step(); on success the particle
     /// forces are updated and stats gets the iterations and residuals.

@@ -80,12 +80,25 @@ namespace fdparticle
       /// True when the interior-pressure penalty acts on some cell (on any rank): it then
       /// fixes the pressure level, and no pressure DoF may be pinned (doc/method.md §4).
       bool pressure_level_fixed = false;
+      /// The owned cells with quadrature points of a free particle, each with that
+      /// particle: where its columns of B and Cᵀ have entries.
+      std::vector<std::pair<typename DoFHandler<dim>::active_cell_iterator, unsigned int>>
+        free_particle_cells;
     };
 
     /// mesh_constraints: the hanging-node and periodicity constraints (closed).
     ParticleSupport particle_support(const DoFHandler<dim> &         dof_handler,
                                      const IndexSet &                 locally_relevant,
                                      const AffineConstraints<double> &mesh_constraints) const;
+
+    /// The pattern of B and Cᵀ (NewtonSystem::border_pattern): the velocity and multiplier
+    /// DoFs of each cell in support.free_particle_cells against its particle's unknowns,
+    /// after the constraints of the step. Collective.
+    TrilinosWrappers::SparsityPattern border_pattern(const ParticleSupport &          support,
+                                                     const AffineConstraints<double> &constraints,
+                                                     const IndexSet &                 locally_owned,
+                                                     const IndexSet &locally_relevant,
+                                                     const MPI_Comm   comm) const;
 
     /// Per-cell volume fraction of particles (for output).
     Vector<float> particle_fraction(const DoFHandler<dim> &dof_handler) const;

@@ -38,12 +38,7 @@ namespace fdparticle
     /// Write y into the particle block of v (on rank 0, which owns it).
     void set_particle_part(BlockVector &v, const Eigen::VectorXd &y) const;
 
-    /// x += B y (x in A's layout).
-    void add_border(TrilinosWrappers::MPI::Vector &x, const Eigen::VectorXd &y) const;
-    /// C x, summed over the ranks.
-    Eigen::VectorXd border_product(const TrilinosWrappers::MPI::Vector &x) const;
-
-    unsigned int n_particle_unknowns() const { return system.D.rows(); }
+    unsigned int n_particle_unknowns() const { return system.n_particle_unknowns(); }
 
   private:
     const NewtonSystem &system;

@@ -7,10 +7,10 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <Eigen/Dense>
+#include <Epetra_CrsMatrix.h>
 
 #include <array>
 #include <utility>
-
 #include <vector>
 
 namespace fdparticle
@@ -23,8 +23,10 @@ namespace fdparticle
    *     [ A  B ] [ x ]     [ r_fe ]   A: (u, λ, p) finite-element block (Trilinos, distributed)
    *     [ C  D ] [ y ] = − [ r_p  ]   y: the particle block (V_k, ω_k), m = (dim + rot)·n_free
    *
-   * The particle block has rank m ≤ 6 per particle, so B is kept as m distributed columns,
-   * C as m distributed rows and D as a small dense (Eigen) matrix, replicated on every rank.
+   * Particle unknown j couples only to the DoFs of the cells its ball meets, so B and C are
+   * sparse: B (n × m) and Cᵀ (n × m) are distributed by rows like A, with the pattern of
+   * those cells, and cost memory in proportion to the particles' cells, not m full-length
+   * vectors. D is a small dense (Eigen) matrix, replicated on every rank.
    *
    * Storage only: the assembler and the particle interactions write into it, a LinearSolver
    * reads it. The blocks are public members, as the finite-element assembly writes A, B, C
@@ -38,11 +40,35 @@ namespace fdparticle
     bool has_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const;
 
     /// Lay out the system for a step: A gets the pattern (rebuilt only if new_pattern, else
-    /// zeroed), the residual and the border vectors B, C the layout of the owned and
-    /// relevant DoFs, D and r_p the size m of the particle unknowns.
+    /// zeroed), the residual the layout of the owned and relevant DoFs, B and Cᵀ the pattern
+    /// border (n × m, see border_pattern), D and r_p the size m of the particle unknowns.
     void reinit(const IndexSet &locally_owned, const IndexSet &locally_relevant,
                 const TrilinosWrappers::SparsityPattern &sparsity, const bool new_pattern,
-                const MPI_Comm comm, const unsigned int m);
+                const TrilinosWrappers::SparsityPattern &border, const MPI_Comm comm);
+
+    /// The particle unknowns as columns of B and Cᵀ (and as the particle block of a
+    /// distributed vector): all m on rank 0.
+    static IndexSet particle_unknowns(const unsigned int m, const MPI_Comm comm);
+    /// An empty pattern for B and Cᵀ: rows the owned DoFs (writable where relevant, as cells
+    /// at a partition boundary add into a neighbour's DoFs), columns the m particle unknowns.
+    static TrilinosWrappers::SparsityPattern border_pattern(const IndexSet &locally_owned,
+                                                            const IndexSet &locally_relevant,
+                                                            const unsigned int m,
+                                                            const MPI_Comm     comm);
+
+    /// Number m of particle unknowns.
+    unsigned int n_particle_unknowns() const { return D.rows(); }
+    /// x += B y on the owned DoFs.
+    void add_border(const Eigen::VectorXd &y, TrilinosWrappers::MPI::Vector &x) const;
+    /// C x, summed over the ranks. Collective.
+    Eigen::VectorXd border_product(const TrilinosWrappers::MPI::Vector &x) const;
+    /// f(local row, column, value) for each non-zero owned entry of B or Cᵀ; local rows
+    /// are in the order of r_fe's owned entries.
+    template <typename F>
+    static void for_each_entry(const TrilinosWrappers::SparseMatrix &border, const F &f);
+    /// The owned non-zeros of each column of B or Cᵀ as (local row, value).
+    static std::vector<std::vector<std::pair<int, double>>>
+    columns(const TrilinosWrappers::SparseMatrix &border);
 
     /// Zero the residuals, and A, B, C, D too if with_matrix.
     void zero(const bool with_matrix);
@@ -97,12 +123,32 @@ namespace fdparticle
     };
     Blocks blocks;
 
-    TrilinosWrappers::SparseMatrix             A;
-    std::vector<TrilinosWrappers::MPI::Vector> B, C;
-    Eigen::MatrixXd                            D;
-    TrilinosWrappers::MPI::Vector              r_fe;
-    Eigen::VectorXd                            r_p;
+    TrilinosWrappers::SparseMatrix A;
+    /// B and C transposed; empty (0 × 0) when there are no particle unknowns.
+    TrilinosWrappers::SparseMatrix B, C_transposed;
+    Eigen::MatrixXd                D;
+    TrilinosWrappers::MPI::Vector  r_fe;
+    Eigen::VectorXd                r_p;
   };
+
+
+  template <typename F>
+  void NewtonSystem::for_each_entry(const TrilinosWrappers::SparseMatrix &border, const F &f)
+  {
+    if (border.m() == 0)
+      return;
+    const Epetra_CrsMatrix &E = border.trilinos_matrix();
+    for (int r = 0; r < E.NumMyRows(); ++r)
+      {
+        int     length;
+        double *values;
+        int *   local_columns;
+        E.ExtractMyRowView(r, length, values, local_columns);
+        for (int k = 0; k < length; ++k)
+          if (values[k] != 0)
+            f(r, static_cast<unsigned int>(E.GCID(local_columns[k])), values[k]);
+      }
+  }
 } // namespace fdparticle
 
 #endif

@@ -25,8 +25,7 @@ namespace fdparticle
     if (refinement.enabled())
       adapt_mesh(false);
     setup_dofs();
-    make_constraints();
-    setup_matrix();
+    setup_matrix(make_constraints());
     set_initial_pressure();
     state_constraints.distribute(solution);
     solution_ghost = solution;
@@ -208,7 +207,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  void Simulation<dim>::make_constraints()
+  typename NavierStokesAssembler<dim>::ParticleSupport Simulation<dim>::make_constraints()
   {
     TimerOutput::Scope t(*timer, "constraints");
     const ComponentMask u_mask = fe.component_mask(Introspection<dim>::velocities());
@@ -235,10 +234,12 @@ namespace fdparticle
           c.add_line(pressure_reference_dof);
         c.close();
       }
+    return support;
   }
 
   template <int dim>
-  void Simulation<dim>::setup_matrix()
+  void Simulation<dim>::setup_matrix(
+    const typename NavierStokesAssembler<dim>::ParticleSupport &support)
   {
     TimerOutput::Scope t(*timer, "setup");
     // The pattern follows the constraints of this step: constrained DoFs (inactive λ,
@@ -272,7 +273,10 @@ namespace fdparticle
     const bool new_pattern = !system.has_pattern(sparsity);
     if (new_pattern)
       linear_solver->pattern_changed();
-    system.reinit(owned_dofs, relevant_dofs, sparsity, new_pattern, comm, particles.n_unknowns());
+    system.reinit(owned_dofs, relevant_dofs, sparsity, new_pattern,
+                  assembler.border_pattern(support, update_constraints, owned_dofs,
+                                           relevant_dofs, comm),
+                  comm);
     linear_solver->operator_changed();
   }
 
@@ -348,16 +352,18 @@ namespace fdparticle
   template void Simulation<2>::start();
   template void Simulation<2>::setup_dofs();
   template void Simulation<2>::adapt_mesh(const bool);
-  template void Simulation<2>::make_constraints();
-  template void Simulation<2>::setup_matrix();
+  template NavierStokesAssembler<2>::ParticleSupport Simulation<2>::make_constraints();
+  template void Simulation<2>::setup_matrix(
+    const NavierStokesAssembler<2>::ParticleSupport &);
   template void Simulation<2>::set_initial_pressure();
   template void Simulation<2>::setup_blocks();
   template void Simulation<2>::check_resolution();
   template void Simulation<3>::start();
   template void Simulation<3>::setup_dofs();
   template void Simulation<3>::adapt_mesh(const bool);
-  template void Simulation<3>::make_constraints();
-  template void Simulation<3>::setup_matrix();
+  template NavierStokesAssembler<3>::ParticleSupport Simulation<3>::make_constraints();
+  template void Simulation<3>::setup_matrix(
+    const NavierStokesAssembler<3>::ParticleSupport &);
   template void Simulation<3>::set_initial_pressure();
   template void Simulation<3>::setup_blocks();
   template void Simulation<3>::check_resolution();

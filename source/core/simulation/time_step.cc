@@ -38,8 +38,7 @@ namespace fdparticle
       {
         stats.dt = time.next_step();
         particles.prepare_step(time);
-        make_constraints();
-        setup_matrix();
+        setup_matrix(make_constraints());
         // A failed Newton solve is retried with a smaller step, like a position check below.
         const NewtonSolver::Result result  = solve_time_step(stats);
         std::string                failure = result.message;

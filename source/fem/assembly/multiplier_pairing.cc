@@ -62,16 +62,16 @@ namespace fdparticle
     for (const unsigned int a : s.multiplier_dofs)
       {
         const unsigned int ca = comp[a];
-        B[ca](a) -= alpha * N[a] * JxW;
-        C[ca](a) += alpha * N[a] * JxW;
+        B(a, ca) -= alpha * N[a] * JxW;
+        C(a, ca) += alpha * N[a] * JxW;
         for (unsigned int j = 0; j < n_rot; ++j)
           {
             const Tensor<1, 3> e = RB::rotation_axis(j);
             const double       pairing =
               (alpha * N[a] * RB::cross(e, r)[ca] + mu * (RB::rotation_gradient(e)[ca] * dN[a])) * JxW;
-            B[dim + j](a) -= pairing;
+            B(a, dim + j) -= pairing;
             if (particles.closure() == AngularVelocityClosure::torque_balance)
-              C[dim + j](a) += pairing;
+              C(a, dim + j) += pairing;
           }
       }
     if (particles.closure() == AngularVelocityClosure::kinematic)
@@ -81,7 +81,7 @@ namespace fdparticle
           G[comp[b]] = dN[b];
           const Tensor<1, 3> curl = RB::curl(G);
           for (unsigned int j = 0; j < n_rot; ++j)
-            C[dim + j](b) -= 0.5 * (curl * RB::rotation_axis(j)) * JxW;
+            C(b, dim + j) -= 0.5 * (curl * RB::rotation_axis(j)) * JxW;
         }
   }
 

@@ -101,8 +101,9 @@ namespace fdparticle
 
     FullMatrix<double> matrix;
     Vector<double>     rhs;
-    /// [particle][unknown] → local vector; sized only for the free particles in touching.
-    std::vector<std::vector<Vector<double>>> border_B, border_C;
+    /// [particle] → (local DoF, particle unknown) block of B and of Cᵀ; sized only for the
+    /// free particles in touching.
+    std::vector<FullMatrix<double>> border_B, border_C;
     /// The particles owning points of the cell, each once.
     std::vector<int> touching;
     /// Summed over all cells of this rank (not reset per cell).
