@@ -84,21 +84,28 @@ namespace fdparticle
               }
         }
     // Distance from the surface |x − X| = R to the cell's box, against band × diameter.
+    // Only the balls within the margin of a box can pass: the index finds them, in the box
+    // grown by one cell more than the margin, so that the strict test of meeting() cannot
+    // drop a ball exactly at the margin.
     const double h = cell->diameter() / std::sqrt(double(dim));
     const double margin = band_width * h;
-    for (unsigned int k = 0; k < particles.size(); ++k)
-      for (const auto &box : images)
-        {
-          const Particle<dim> &p = particles[k];
-          // The box's farthest point from the centre: the far corner in every direction.
-          double far2 = 0;
-          for (unsigned int d = 0; d < dim; ++d)
-            far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
-                                      std::abs(p.geometry_center[d] - box.upper_bound(d))),
-                             2);
-          if (p.distance_to(box) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
-            return true;
-        }
+    for (const auto &box : images)
+      {
+        BoundingBox<dim> reach = box;
+        reach.extend(margin + h);
+        for (const unsigned int k : particles.meeting(reach))
+          {
+            const Particle<dim> &p = particles[k];
+            // The box's farthest point from the centre: the far corner in every direction.
+            double far2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
+                                        std::abs(p.geometry_center[d] - box.upper_bound(d))),
+                               2);
+            if (p.distance_to(box) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
+              return true;
+          }
+      }
     return false;
   }
 
@@ -140,7 +147,7 @@ namespace fdparticle
     unsigned int n = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned() && cell->level() < int(base_level + n_levels))
-        for (unsigned int k = 0; k < particles.size(); ++k)
+        for (const unsigned int k : particles.meeting(cell->bounding_box()))
           {
             bool inside = false, outside = false;
             for (const unsigned int v : cell->vertex_indices())
