@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Work per time step against the number of particles at a fixed mesh (doc/particles.md):
-# N = 1, 4, 16, 64 disks (radius 0.04, density 1.1) placed at random in a closed 2 x 2
+# N = 1, 4, 16, 64, 128 disks (radius 0.04, density 1.1) placed at random in a closed 2 x 2
 # box of fluid on a uniform 64 x 64 mesh (no particle refinement, so every N has the same
 # mesh), Collisions/Model = repulsion, 4 steps of 0.005. Writes doc/particle_count_2d.csv
 # (per N: particle unknowns, seconds per step, in assembly and in the linear solve, peak
 # memory) and the plot doc/particle_count_2d.png.
 #
 # Usage (regenerate):  bash benchmarks/particle_count_2d.sh
-# EXE=PATH overrides the executable, WORK=DIR the work directory.
+# EXE=PATH overrides the executable, WORK=DIR the work directory, COUNTS="1 4" the N.
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
@@ -15,7 +15,7 @@ work="${WORK:-$top/benchmarks/work/particle_count_2d}"
 mkdir -p "$work"
 csv="$top/doc/particle_count_2d.csv"
 echo "particles,particle_unknowns,dofs,steps,newton_iterations_per_step,seconds_per_step,assembly_seconds_per_step,solve_seconds_per_step,peak_MB" > "$csv"
-for n in 1 4 16 64; do
+for n in ${COUNTS:-1 4 16 64 128}; do
   cat > "$work/n$n.prm" <<PRM
 set Dimension = 2
 set Gravity = 0, -981
@@ -74,7 +74,7 @@ gnuplot <<GP
 set terminal pngcairo size 760,480 noenhanced
 set output "$top/doc/particle_count_2d.png"
 set datafile separator ","
-set logscale x 2; set xrange [0.8:80]; set yrange [0:*]
+set logscale x 2; set xrange [0.8:160]; set yrange [0:*]
 set xlabel "particles (fixed 64 x 64 mesh)"; set ylabel "seconds per step"; set key top left
 set y2label "peak memory [MB]"; set y2range [0:*]; set ytics nomirror; set y2tics
 set title "Work per step against particle count (benchmarks/particle_count_2d.sh)"
