@@ -3,6 +3,8 @@
 
 #include <fdparticle/fem/cut_cell_quadrature.h>
 
+#include <limits>
+
 namespace fdparticle
 {
   namespace
@@ -88,21 +90,52 @@ namespace fdparticle
     prm.leave_subsection();
   }
 
+  namespace
+  {
+    /// Fluid, inside or cut, given the balls that meet the cell (sorted): the first one
+    /// decides, as balls do not overlap.
+    template <int dim>
+    CellKind kind_of(const typename Triangulation<dim>::cell_iterator &cell,
+                     const ParticleSet<dim> &particles, const std::vector<unsigned int> &balls)
+    {
+      if (balls.empty())
+        return CellKind::fluid;
+      const Particle<dim> &p = particles[balls.front()];
+      bool all_inside = true;
+      for (const unsigned int v : cell->vertex_indices())
+        all_inside = all_inside && p.contains(cell->vertex(v));
+      return all_inside ? CellKind::inside : CellKind::cut;
+    }
+  } // namespace
+
   template <int dim>
   CellKind CutCellQuadrature<dim>::classify(const typename Triangulation<dim>::cell_iterator &cell,
                                             const ParticleSet<dim> &particles,
                                             int &                   particle) const
   {
-    particle = -1;
     const std::vector<unsigned int> balls = particles.meeting(cell->bounding_box());
-    if (balls.empty())
-      return CellKind::fluid;
-    particle = balls.front();
-    const Particle<dim> &p = particles[particle];
-    bool all_inside = true;
-    for (const unsigned int v : cell->vertex_indices())
-      all_inside = all_inside && p.contains(cell->vertex(v));
-    return all_inside ? CellKind::inside : CellKind::cut;
+    particle = balls.empty() ? -1 : int(balls.front());
+    return kind_of<dim>(cell, particles, balls);
+  }
+
+  template <int dim>
+  unsigned int CutCellQuadrature<dim>::nearest_surface(const CellRule &         rule,
+                                                       const ParticleSet<dim> &particles,
+                                                       const Point<dim> &      x) const
+  {
+    Assert(!rule.balls.empty(), ExcMessage("No ball meets this cell."));
+    unsigned int nearest = rule.balls.front();
+    double       gap = std::numeric_limits<double>::max();
+    for (const unsigned int k : rule.balls)
+      {
+        const double g = x.distance(particles[k].geometry_center) - particles[k].radius;
+        if (g < gap)
+          {
+            gap = g;
+            nearest = k;
+          }
+      }
+    return nearest;
   }
 
   template <int dim>
@@ -110,18 +143,18 @@ namespace fdparticle
                                       const ParticleSet<dim> &particles,
                                       CellRule &              rule) const
   {
-    int particle = -1;
-    rule.kind = classify(cell, particles, particle);
-    rule.particle = particle;
+    rule.balls = particles.meeting(cell->bounding_box());
+    rule.kind = kind_of<dim>(cell, particles, rule.balls);
+    rule.particle = rule.balls.empty() ? -1 : int(rule.balls.front());
     rule.quadrature = (rule.kind == CellKind::cut ? &cut : &regular);
-    rule.owner.assign(rule.quadrature->size(), rule.kind == CellKind::fluid ? -1 : particle);
+    rule.owner.assign(rule.quadrature->size(), rule.kind == CellKind::fluid ? -1 : rule.particle);
     rule.owners_known = (rule.kind != CellKind::cut);
     if (rule.kind != CellKind::cut || cut_method != Method::level_set)
       return;
     // A cell that two balls meet (near contact) keeps the Gauss rule: the level-set rule
     // here describes one ball.
-    if (particles.meeting(cell->bounding_box()).size() == 1)
-      generate_level_set_rule(cell, particles[particle], particle, rule);
+    if (rule.balls.size() == 1)
+      generate_level_set_rule(cell, particles[rule.particle], rule.particle, rule);
   }
 
   template <int dim>

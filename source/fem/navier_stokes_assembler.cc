@@ -169,7 +169,6 @@ namespace fdparticle
         // The cell: its kind and the iterate at its points.
         const unsigned int nq = fv.n_quadrature_points;
         s.kind = rule.kind;
-        s.cut_particle = rule.particle;
         s.has_particle = rule.has_particle_point();
         s.particle_fraction = (rule.kind == CellKind::cut ? particle_fraction_of(fv, rule) : 0.0);
         s.u.resize(nq), s.u_history.resize(nq), s.grad_u.resize(nq), s.p.resize(nq);
@@ -206,6 +205,10 @@ namespace fdparticle
             s.JxW = fv.JxW(q);
             s.x = fv.quadrature_point(q);
             s.particle = rule.owner[q];
+            // Near a contact two balls cut the cell: each fluid point takes its nearer one.
+            s.cut_particle = (rule.kind == CellKind::cut && s.particle < 0 && rule.balls.size() > 1) ?
+                               int(quadrature.nearest_surface(rule, particles, s.x)) :
+                               rule.particle;
             for (unsigned int i = 0; i < n; ++i)
               {
                 s.N[i] = fv.shape_value(i, q);

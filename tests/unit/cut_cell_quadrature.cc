@@ -374,7 +374,8 @@ namespace
     }
   }
 
-  /// Two balls closer than a cell: each point goes to the ball containing it.
+  /// Two balls closer than a cell: each point goes to the ball containing it, and each
+  /// fluid point takes its penalty from the ball whose surface is nearest.
   void test_two_balls()
   {
     // Both surfaces cross the cell column [0.4375, 0.46875] (at x = 0.445 and 0.462).
@@ -396,6 +397,23 @@ namespace
           "'Gauss points in cut cells = 5' gives a 5x5 cut rule");
     check(e1 < 1e-2, "volume of ball 1 within 1e-2");
     check(e2 < 1e-2, "volume of ball 2 within 1e-2");
+
+    // The cut-cell penalties at a fluid point take the ball whose surface is nearest:
+    // in the gap, (0.452, 0.49) is 0.007 from ball 1's surface and 0.010 from ball 2's
+    // (but nearer ball 2's centre), (0.46, 0.49) 0.015 and 0.002.
+    const Point<2> near_1(0.452, 0.49), near_2(0.46, 0.49);
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->point_inside(near_1))
+        {
+          check(cell->point_inside(near_2), "(setup) both points lie in one cell");
+          typename CutCellQuadrature<2>::CellRule rule;
+          scene.quadrature.reinit(cell, scene.particles, rule);
+          check(rule.kind == CellKind::cut && rule.balls.size() == 2,
+                "the cell between the balls is cut and meets both");
+          check(scene.quadrature.nearest_surface(rule, scene.particles, near_1) == 0 &&
+                  scene.quadrature.nearest_surface(rule, scene.particles, near_2) == 1,
+                "the nearest surface in the gap: ball 1 at x = 0.452, ball 2 at x = 0.46");
+        }
   }
 } // namespace
 

@@ -43,6 +43,8 @@ namespace fdparticle
     {
       CellKind                kind = CellKind::fluid;
       int                     particle = -1; ///< the particle that meets the cell (first one)
+      /// All balls that meet the cell (ParticleSet::meeting), sorted; two or more near a contact.
+      std::vector<unsigned int> balls;
       const Quadrature<dim> * quadrature = nullptr;
       std::vector<int>        owner;
       /// A rule made for this cell alone (level set); quadrature then points here.
@@ -73,6 +75,12 @@ namespace fdparticle
     /// Which particles meet the cell: fluid, inside or cut (by the cell's vertices and box).
     CellKind classify(const typename Triangulation<dim>::cell_iterator &cell,
                       const ParticleSet<dim> &particles, int &particle) const;
+
+    /// The ball whose surface is nearest to the point x of the cell of rule: at a fluid
+    /// point of a cut cell, the ball whose radius sets the cut-cell penalties, so a cell
+    /// that two balls cut penalizes the fluid near each by that ball's own weight.
+    unsigned int nearest_surface(const CellRule &rule, const ParticleSet<dim> &particles,
+                                 const Point<dim> &x) const;
 
     /**
      * Fill rule for the cell; quadrature_points_real are the rule's points mapped to the

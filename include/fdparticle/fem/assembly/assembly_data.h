@@ -66,7 +66,7 @@ namespace fdparticle
 
     // The cell.
     CellKind                kind = CellKind::fluid;
-    int                     cut_particle = -1; ///< the particle whose surface cuts the cell
+    int                     cut_particle = -1; ///< the ball whose surface is nearest to the point (cut cells)
     double                  particle_fraction = 0; ///< of a cut cell: its weights inside
     bool                    has_particle = false;  ///< some point of the cell is in a particle
     // The iterate at the cell's points (λ only where a particle or a cut needs it).
