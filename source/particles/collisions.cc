@@ -126,12 +126,10 @@ namespace fdparticle
   }
 
   template <int dim>
-  double Collisions<dim>::contact_time(const unsigned int i, const unsigned int j,
-                                       const ParticleSet<dim> &particles) const
+  double Collisions<dim>::contact_time(const double effective_mass, const double stiffness) const
   {
     const double log_e = std::log(restitution);
-    return std::sqrt(effective_mass(i, j, particles) / spring_stiffness(i, j)) *
-           std::sqrt(numbers::PI * numbers::PI + log_e * log_e);
+    return std::sqrt(effective_mass / stiffness) * std::sqrt(numbers::PI * numbers::PI + log_e * log_e);
   }
 
   template <int dim>
@@ -161,12 +159,7 @@ namespace fdparticle
     // The shortest contact: each ball against a copy of itself.
     double shortest = std::numeric_limits<double>::max();
     for (unsigned int k = 0; k < weight.size(); ++k)
-      {
-        const double m_eff = mass[k] / 2, stiffness = spring_stiffness(k, k);
-        const double log_e = std::log(restitution);
-        shortest = std::min(shortest, std::sqrt(m_eff / stiffness) *
-                                        std::sqrt(numbers::PI * numbers::PI + log_e * log_e));
-      }
+      shortest = std::min(shortest, contact_time(mass[k] / 2, spring_stiffness(k, k)));
     std::ostringstream out;
     out << "Collisions: spring-dashpot contacts last t_c = " << std::setprecision(3) << shortest
         << " (" << shortest / dt << " time steps; the implicit time integration takes "
@@ -225,7 +218,9 @@ namespace fdparticle
         if (friction > 0)
           {
             const ContactFriction<dim> coulomb(
-              friction, slip_velocity_fraction * range / contact_time(pair.i, pair.j, particles));
+              friction, slip_velocity_fraction * range /
+                contact_time(effective_mass(pair.i, pair.j, particles),
+                             spring_stiffness(pair.i, pair.j)));
             coulomb.add(particles, pair.i, pair.j, pair.offset - (x[pair.i] - x[pair.j]),
                         [&](const double gap, const double normal_velocity) {
                           return spring_dashpot(pair.i, pair.j, particles, gap, normal_velocity)

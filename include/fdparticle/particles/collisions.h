@@ -107,9 +107,9 @@ namespace fdparticle
                                   const ParticleSet<dim> &particles, const double gap,
                                   const double normal_velocity) const;
     double spring_stiffness(const unsigned int i, const unsigned int j) const;
-    /// √(m_eff/k) √(π² + ln² e): how long a contact of balls i and j lasts.
-    double contact_time(const unsigned int i, const unsigned int j,
-                        const ParticleSet<dim> &particles) const;
+    /// √(m_eff/k) √(π² + ln² e): how long a contact of effective mass m_eff and spring
+    /// stiffness k lasts.
+    double contact_time(const double effective_mass, const double stiffness) const;
     double effective_mass(const unsigned int i, const unsigned int j,
                           const ParticleSet<dim> &particles) const;
   };
