@@ -28,6 +28,31 @@ namespace fdparticle
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 
+    /// Whether the owned rows of K have exactly the global columns of rows (in any order).
+    bool has_rows(const Epetra_CrsMatrix &K, const std::vector<std::vector<int>> &rows)
+    {
+      if (K.NumMyRows() != int(rows.size()))
+        return false;
+      std::vector<int> now, next;
+      for (int r = 0; r < K.NumMyRows(); ++r)
+        {
+          int  length;
+          int *local_columns;
+          K.Graph().ExtractMyRowView(r, length, local_columns);
+          if (length != int(rows[r].size()))
+            return false;
+          now.resize(length);
+          for (int k = 0; k < length; ++k)
+            now[k] = K.GCID(local_columns[k]);
+          next = rows[r];
+          std::sort(now.begin(), now.end());
+          std::sort(next.begin(), next.end());
+          if (now != next)
+            return false;
+        }
+      return true;
+    }
+
     /// MUMPS's ICNTL(7) for each ordering it can compute itself. Debian's MUMPS has none
     /// of METIS or SCOTCH built in, so "metis" is computed here and handed over as a user
     /// ordering (ICNTL(7) = 1).
@@ -208,7 +233,6 @@ namespace fdparticle
     problem.reset();
     Z.reset();
     K.reset();
-    K_pattern.clear();
     factored      = nullptr;
     symbolic_done = numeric_done = schur_done = false;
   }
@@ -274,14 +298,7 @@ namespace fdparticle
               }
       }
 
-    std::vector<int> pattern;
-    for (const std::vector<int> &row : columns)
-      {
-        pattern.push_back(row.size());
-        pattern.insert(pattern.end(), row.begin(), row.end());
-      }
-    const bool new_pattern =
-      dealii::Utilities::MPI::logical_or(!K || pattern != K_pattern, comm);
+    const bool new_pattern = dealii::Utilities::MPI::logical_or(!K || !has_rows(*K, columns), comm);
 
     std::vector<int> gids(columns.size());
     for (int r = 0; r < n_local; ++r)
@@ -299,7 +316,6 @@ namespace fdparticle
         for (std::size_t r = 0; r < columns.size(); ++r)
           lengths[r] = columns[r].size();
         K = std::make_unique<Epetra_CrsMatrix>(Copy, map, lengths.data(), true);
-        K_pattern = std::move(pattern);
         for (std::size_t r = 0; r < columns.size(); ++r)
           AssertThrow(K->InsertGlobalValues(gids[r], lengths[r], values[r].data(),
                                             columns[r].data()) == 0,

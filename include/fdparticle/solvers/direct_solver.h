@@ -102,9 +102,6 @@ namespace fdparticle
     const Epetra_CrsMatrix *factored = nullptr;
     /// K = [A B; C D]; rows of A where each rank owns them, particle rows on rank 0.
     std::unique_ptr<Epetra_CrsMatrix> K;
-    /// K's owned rows as (length, global columns …) one after the other, to tell a new
-    /// pattern from the previous one.
-    std::vector<int> K_pattern;
     /// MUMPS's ICNTL(14): extra working space in percent of its own estimate. MUMPS's
     /// default is 20; the saddle-point block delays pivots, so we start with more margin
     /// (doc/performance.md, working space). Raised (and kept) by workspace_growth when a
