@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Two equal spheres translating along their line of centres in Stokes flow, against
-Stimson & Jeffery's exact drag (doc/references/README.md, doc/particles.md).
+Stimson & Jeffery's exact drag (doc/references/README.md, doc/particles.md), from l/d = 1.1
+(a gap of 0.2 radii) to 3.
 
 Each sphere (a = 1) moves at prescribed U = 1 along y; the drag factor of one is
 lambda = F / (6 pi mu a U). The box is closed, so its walls raise the drag: every box size
@@ -10,7 +11,7 @@ from the single sphere, the pair's unbounded drag factor follows from
 1/lambda = 1/lambda_2 + 2 beta. Two box sizes show how much of the correction is left.
 Steady Stokes in one step as in tests/validation_wall_3d.prm (rho = 1e-6, Delta t = 0.01).
 
-Regenerate (from the top of the repository, after scripts/build.sh; about 5 min on 2 cores):
+Regenerate (from the top of the repository, after scripts/build.sh; about 6 min):
     /usr/bin/python3 benchmarks/stimson_jeffery.py
 Writes doc/stimson_jeffery.csv and prints the table of doc/particles.md.
 Options: --executable PATH   --work DIR (default benchmarks/work/stimson_jeffery)
@@ -24,8 +25,24 @@ import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# Stimson & Jeffery (1926), exact; doc/references/README.md: lambda at centre distance l/d.
-REFERENCE = {1.5: 0.698, 2.0: 0.742, 3.0: 0.805}
+# Stimson & Jeffery (1926), doc/references/README.md: lambda at centre distance l/d as
+# published, to check the series below against.
+PUBLISHED = {1.5: 0.698, 2.0: 0.742, 3.0: 0.805}
+DISTANCES = (1.1, 1.25, 1.5, 2.0, 3.0)
+# Terms of the series: it converges like exp(-2 n alpha), alpha >= 0.44 for l/d >= 1.1.
+SERIES_TERMS = 100
+
+
+def exact_drag(distance_over_d):
+    """Stimson & Jeffery's exact drag factor, in bispherical coordinates: cosh(alpha) is
+    the centre distance over the diameter."""
+    alpha = math.acosh(distance_over_d)
+    total = 0.0
+    for n in range(1, SERIES_TERMS + 1):
+        numerator = 4 * math.sinh((n + 0.5) * alpha) ** 2 - (2 * n + 1) ** 2 * math.sinh(alpha) ** 2
+        denominator = 2 * math.sinh((2 * n + 1) * alpha) + (2 * n + 1) * math.sinh(2 * alpha)
+        total += n * (n + 1) / ((2 * n - 1) * (2 * n + 3)) * (1 - numerator / denominator)
+    return 4 / 3 * math.sinh(alpha) * total
 # Box half-widths in radii; base cells 8 radii wide and 4 refinement levels: d/h = 4 at the
 # spheres for every box.
 BOXES = (16, 32)
@@ -91,6 +108,8 @@ def main():
     parser.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "stimson_jeffery"))
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
+    for ratio, value in PUBLISHED.items():
+        assert abs(exact_drag(ratio) - value) < 1e-3, f"the series at l/d = {ratio}"
     rows = []
     for L in BOXES:
         (single,), dofs, seconds = run(args.executable, args.work, f"box{L}_single", L, [0.0])
@@ -98,7 +117,8 @@ def main():
         rows.append(dict(box_half_width=L, distance_over_d="single", drag_box=single,
                          drag_ratio="", drag_corrected="", reference=1.0, error_percent="",
                          dofs=dofs, seconds=round(seconds, 1)))
-        for ratio, reference in REFERENCE.items():
+        for ratio in DISTANCES:
+            reference = exact_drag(ratio)
             half = ratio  # centres at -l/2 and l/2 with l = ratio * 2a
             drags, dofs, seconds = run(args.executable, args.work, f"box{L}_l{ratio}", L, [-half, half])
             pair = sum(drags) / 2
