@@ -8,7 +8,9 @@
 # Each run is one process on RANKS ranks (default 1); compare the ratios within one run of
 # the script (the machine is shared). Writes doc/scaling.csv, doc/scaling_time.png,
 # doc/scaling_memory.png and doc/scaling_iterations.png (FGMRES iterations against mesh
-# size). SOLVERS="iterative" skips the direct solver.
+# size). Solvers: direct, iterative (the defaults) and iterative-patch (with the cut-cell
+# patch solve, Cut cell patch layers = 1); SOLVERS="iterative" runs only that one.
+# PLOT_ONLY=1 redraws the plots from doc/scaling.csv.
 # Usage: bash benchmarks/scaling.sh     (~10 min on 2 cores with the default SIZES="4 6 8")
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
@@ -16,7 +18,7 @@ exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/scaling}"
 sizes="${SIZES:-4 6 8}"
 ranks="${RANKS:-1}"
-solvers="${SOLVERS:-direct iterative}"
+solvers="${SOLVERS:-direct iterative iterative-patch}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
 export OMPI_MCA_mpi_yield_when_idle=1
@@ -37,6 +39,7 @@ array() { # n
 }
 
 csv="$top/doc/scaling.csv"
+if [ "${PLOT_ONLY:-0}" != 1 ]; then
 echo "scene,n,solver,dofs,linear_iterations,inner_iterations,wall_seconds,peak_mb" > "$csv"
 for name in sediment array; do
   for n in $sizes; do
@@ -44,7 +47,9 @@ for name in sediment array; do
       d="$work/$name-$n-$solver"
       mkdir -p "$d"
       { "$name" "$n"
-        printf 'subsection Solver\n  set Linear solver = %s\nend\n' "$solver"
+        printf 'subsection Solver\n  set Linear solver = %s\n' "${solver%-patch}"
+        [ "$solver" = iterative-patch ] && printf '  set Cut cell patch layers = 1\n'
+        printf 'end\n'
         printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$d/out"
       } > "$d/scene.prm"
       cmd=("$exe" "$d/scene.prm")
@@ -60,6 +65,7 @@ for name in sediment array; do
     done
   done
 done
+fi
 
 for what in time memory; do
   col=7 label="wall time of the run [s]"
@@ -72,7 +78,7 @@ set logscale xy
 set xlabel "finite-element unknowns"
 set ylabel "$label"
 set key top left
-plot for [s in "sediment array"] for [v in "direct iterative"] \
+plot for [s in "sediment array"] for [v in "direct iterative iterative-patch"] \
   sprintf("< grep '^%s,[0-9]*,%s,' $csv", s, v) using 4:$col with linespoints title s." ".v
 GNUPLOT
 done
@@ -85,8 +91,8 @@ set logscale x
 set xlabel "finite-element unknowns"
 set ylabel "iterations of the step"
 set key top left
-plot for [s in "sediment array"] \
-  sprintf("< grep '^%s,[0-9]*,iterative,' $csv", s) using 4:5 with linespoints title s." FGMRES", \
-  for [s in "sediment array"] \
-  sprintf("< grep '^%s,[0-9]*,iterative,' $csv", s) using 4:(\$6/10) with linespoints title s." inner / 10"
+plot for [s in "sediment array"] for [v in "iterative iterative-patch"] \
+  sprintf("< grep '^%s,[0-9]*,%s,' $csv", s, v) using 4:5 with linespoints title s." ".v." FGMRES", \
+  for [s in "sediment array"] for [v in "iterative iterative-patch"] \
+  sprintf("< grep '^%s,[0-9]*,%s,' $csv", s, v) using 4:(\$6/10) with linespoints dashtype 2 title s." ".v." inner / 10"
 GNUPLOT

@@ -70,7 +70,7 @@ namespace fdparticle
                                  const unsigned int j, const Tensor<1, dim> &shift,
                                  const NormalForce &normal_force,
                                  const std::array<double, 3> &c, Eigen::VectorXd &r_p,
-                                 Eigen::MatrixXd *D) const
+                                 Eigen::SparseMatrix<double> *D) const
   {
     if (coefficient == 0)
       return;
@@ -117,7 +117,7 @@ namespace fdparticle
                 const unsigned int row = particles[ball[s]].first_unknown;
                 if (row != numbers::invalid_unsigned_int)
                   for (unsigned int l = 0; l < n_unknowns; ++l)
-                    (*D)(row + l, column + k) -= derivative[s * n_unknowns + l];
+                    D->coeffRef(row + l, column + k) -= derivative[s * n_unknowns + l];
               }
           }
       }

@@ -86,7 +86,7 @@ namespace fdparticle
   template <int dim>
   void Lubrication<dim>::add_to_particle_rows(ParticleSet<dim> &particles,
                                              const std::array<double, 3> &c,
-                                             Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const
+                                             Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const
   {
     if (!on)
       return;

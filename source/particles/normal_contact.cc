@@ -35,7 +35,7 @@ namespace fdparticle
   template <int dim>
   void NormalContact<dim>::add(ParticleSet<dim> &particles, const NormalLawValue &f,
                                const std::array<double, 3> &c, Eigen::VectorXd &r_p,
-                               Eigen::MatrixXd *D) const
+                               Eigen::SparseMatrix<double> *D) const
   {
     const Tensor<1, dim> F = f.force * n; // on i; −F on j
     Tensor<2, dim>       dF;              // dF/dV_rel
@@ -71,7 +71,7 @@ namespace fdparticle
                 continue;
               for (unsigned int a = 0; a < dim; ++a)
                 for (unsigned int b = 0; b < dim; ++b)
-                  (*D)(P.first_unknown + a, column + b) -= sign[s] * sign[t] * dF[a][b];
+                  D->coeffRef(P.first_unknown + a, column + b) -= sign[s] * sign[t] * dF[a][b];
             }
       }
   }

@@ -33,6 +33,9 @@ namespace fdparticle
 
   void BlockPreconditioner::clear()
   {
+    patch.clear();
+    patch_active = false;
+    n_patch      = 0;
     velocity_amg.clear();
     multiplier_amg.clear();
     pressure_amg.clear();
@@ -126,6 +129,13 @@ namespace fdparticle
     initialize_pressure_cells();
     initialize_pressure_laplacian();
     initialize_particle_block();
+    patch.clear();
+    if (patch_layers >= 0)
+      patch.initialize(*system, patch_layers);
+    n_patch      = Utilities::MPI::sum<types::global_dof_index>(patch.size(), comm);
+    patch_active = n_patch > 0;
+    if (patch_active)
+      op->reinit_vector(patch_residual);
   }
 
   void BlockPreconditioner::initialize_velocity_and_multiplier()
@@ -222,30 +232,46 @@ namespace fdparticle
 
   void BlockPreconditioner::initialize_particle_block()
   {
-    // S_y = D − C S_λ⁻¹ B, column by column.
-    const unsigned int m   = op->n_particle_unknowns();
+    // S_y = D − C S_λ⁻¹ B, block by particle: B's column of unknown j of particle k is
+    // non-zero only on k's cells, and S_λ⁻¹ (one V-cycle of A_λλ + M, whose rows outside
+    // the particles are diagonal) reaches little beyond them. So the columns of unknown j
+    // of all particles go through one V-cycle together, and each particle reads its own
+    // block off the result in its rows: particle_block_size V-cycles, however many
+    // particles. What two particles close together do to each other through S_λ⁻¹ lands
+    // in their own blocks; D's contact blocks between particles are kept.
+    const unsigned int m = op->n_particle_unknowns();
+    if (m == 0)
+      return;
+    const unsigned int size = system->blocks.particle_block_size;
+    Assert(size > 0 && m % size == 0, ExcInternalError());
     const unsigned int n_l = owned[multiplier_block].n_elements();
-    Eigen::MatrixXd    S   = system->D;
-    const auto         B   = NewtonSystem::columns(system->B);
     const unsigned int o_l = local_offset[multiplier_block];
-    for (unsigned int j = 0; j < m; ++j)
+
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(system->D.nonZeros() + m * size);
+    for (int j = 0; j < system->D.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator e(system->D, j); e; ++e)
+        entries.emplace_back(e.row(), e.col(), e.value());
+    for (unsigned int j = 0; j < size; ++j)
       {
-        // B's column j on the multiplier block (its only non-zero rows).
         l_in = 0;
-        for (const auto &[row, value] : B[j])
-          {
-            Assert(row >= int(o_l) && row < int(o_l + n_l), ExcInternalError());
-            values(l_in)[row - o_l] = value;
-          }
+        NewtonSystem::for_each_entry(system->B, [&](const int row, const unsigned int column,
+                                                    const double value) {
+          Assert(row >= int(o_l) && row < int(o_l + n_l), ExcInternalError());
+          if (column % size == j)
+            values(l_in)[row - o_l] += value;
+        });
         multiplier_amg.vmult(l_out, l_in);
         full = 0;
         std::copy_n(values(l_out), n_l, values(full) + local_offset[multiplier_block]);
-        S.col(j) -= system->border_product(full);
+        const Eigen::VectorXd product = system->border_product(full);
+        for (unsigned int i = 0; i < m; ++i)
+          entries.emplace_back(i, i - i % size + j, -product[i]);
       }
-    if (m == 0)
-      return;
+    Eigen::SparseMatrix<double> S(m, m);
+    S.setFromTriplets(entries.begin(), entries.end());
     particle_schur.compute(S);
-    AssertThrow(particle_schur.isInvertible(),
+    AssertThrow(particle_schur.info() == Eigen::Success,
                 ExcMessage("The particle block of the Newton system is singular: a particle "
                            "is not resolved by the mesh (too few cells inside it?)."));
   }
@@ -299,6 +325,16 @@ namespace fdparticle
   }
 
   void BlockPreconditioner::vmult(BlockVector &dst, const BlockVector &src) const
+  {
+    vmult_blocks(dst, src);
+    if (!patch_active)
+      return;
+    op->vmult(patch_residual, dst);
+    patch_residual.sadd(-1.0, 1.0, src);
+    patch.add_correction(dst.block(0), patch_residual.block(0));
+  }
+
+  void BlockPreconditioner::vmult_blocks(BlockVector &dst, const BlockVector &src) const
   {
     const unsigned int n_p = owned[pressure_block].n_elements();
     const unsigned int o_p = local_offset[pressure_block];

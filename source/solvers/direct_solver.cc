@@ -289,13 +289,18 @@ namespace fdparticle
             }
         // D, with its diagonal always: for a neutrally buoyant particle it is 0, and the
         // row still needs its pivot position in the pattern.
+        const Eigen::SparseMatrix<double, Eigen::RowMajor> D = system.D;
         for (unsigned int i = 0; i < m; ++i)
-          for (unsigned int j = 0; j < m; ++j)
-            if (i == j || system.D(i, j) != 0)
-              {
-                columns[n_local + i].push_back(n + j);
-                values[n_local + i].push_back(system.D(i, j));
-              }
+          {
+            columns[n_local + i].push_back(n + i);
+            values[n_local + i].push_back(D.coeff(i, i));
+            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator e(D, i); e; ++e)
+              if (e.col() != int(i))
+                {
+                  columns[n_local + i].push_back(n + e.col());
+                  values[n_local + i].push_back(e.value());
+                }
+          }
       }
 
     const bool new_pattern = dealii::Utilities::MPI::logical_or(!K || !has_rows(*K, columns), comm);
@@ -537,7 +542,7 @@ namespace fdparticle
 
     if (new_schur)
       {
-        Eigen::MatrixXd S = system.D;
+        Eigen::MatrixXd S = Eigen::MatrixXd(system.D);
         for (unsigned int i = 0; i < m; ++i)
           for (unsigned int j = 0; j < m; ++j)
             S(i, j) -= G[i * n_rhs + j + 1];

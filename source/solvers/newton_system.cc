@@ -114,7 +114,7 @@ namespace fdparticle
         B.clear();
         C_transposed.clear();
       }
-    D.setZero(m, m);
+    D.resize(m, m);
     r_p.setZero(m);
   }
 
@@ -153,15 +153,5 @@ namespace fdparticle
                    [&](const int r, const unsigned int i, const double v) { g[i] += v * xv[r]; });
     Utilities::MPI::sum(g, r_fe.get_mpi_communicator(), g);
     return Eigen::Map<const Eigen::VectorXd>(g.data(), g.size());
-  }
-
-  std::vector<std::vector<std::pair<int, double>>>
-  NewtonSystem::columns(const TrilinosWrappers::SparseMatrix &border)
-  {
-    std::vector<std::vector<std::pair<int, double>>> result(border.n());
-    for_each_entry(border, [&](const int r, const unsigned int j, const double v) {
-      result[j].emplace_back(r, v);
-    });
-    return result;
   }
 } // namespace fdparticle

@@ -180,7 +180,7 @@ namespace
       const AssemblyCopy<dim> copy = assemble(x, y, false);
       NewtonSystem            system;
       system.r_p = Eigen::VectorXd::Zero(y.size());
-      system.D = Eigen::MatrixXd::Zero(y.size(), y.size());
+      system.D.resize(y.size(), y.size());
       equations.assemble(copy.integrals, c, false, system);
       return system.r_p;
     }
@@ -267,7 +267,7 @@ namespace
     const Eigen::VectorXd r_p = cell.particle_residual(cell.coefficients, cell.unknowns);
     NewtonSystem          system;
     system.r_p = Eigen::VectorXd::Zero(m);
-    system.D = Eigen::MatrixXd::Zero(m, m);
+    system.D.resize(m, m);
     cell.equations.assemble(at.integrals, cell.c, true, system);
     for (unsigned int k = 0; k < m; ++k)
       {
@@ -283,7 +283,7 @@ namespace
           (cell.particle_residual(cell.coefficients, plus) -
            cell.particle_residual(cell.coefficients, minus)) / (2 * fd_step);
         for (unsigned int i = 0; i < m; ++i)
-          block.add(d_r[i], system.D(i, k));
+          block.add(d_r[i], system.D.coeff(i, k));
       }
     columns.report(name + "border columns B = d(cell residual)/d(V, omega)");
     block.report(name + "particle block D = d(particle rows)/d(V, omega)");

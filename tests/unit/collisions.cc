@@ -138,7 +138,7 @@ namespace
           set[k].omega[RigidBody<dim>::rotation_component(r)] = 10 * uniform(random);
       }
     const unsigned int m  = set.n_unknowns();
-    const auto residual = [&](const Eigen::VectorXd &y, Eigen::MatrixXd *D) {
+    const auto residual = [&](const Eigen::VectorXd &y, Eigen::SparseMatrix<double> *D) {
       set.set_unknowns(y);
       for (unsigned int k = 0; k < set.size(); ++k)
         set[k].contact_force = Tensor<1, dim>();
@@ -148,8 +148,9 @@ namespace
       return r;
     };
     const Eigen::VectorXd y0 = set.get_unknowns();
-    Eigen::MatrixXd       D  = Eigen::MatrixXd::Zero(m, m);
-    const Eigen::VectorXd r0 = residual(y0, &D);
+    Eigen::SparseMatrix<double> sparse_D(m, m);
+    const Eigen::VectorXd r0 = residual(y0, &sparse_D);
+    const Eigen::MatrixXd D  = Eigen::MatrixXd(sparse_D);
     const Tensor<1, dim>  F0 = set[0].contact_force;
     if (!in_range)
       {
@@ -253,13 +254,15 @@ namespace
                   r[set[k].first_unknown + d] = result.mass * set[k].acceleration(c)[d];
                 r[set[k].first_unknown + dim] = result.inertia * set[k].angular_acceleration(c)[2];
               }
-            Eigen::MatrixXd D = Eigen::MatrixXd(mass.asDiagonal()) * c[0];
+            Eigen::SparseMatrix<double> D(mass.size(), mass.size());
+            for (int i = 0; i < mass.size(); ++i)
+              D.coeffRef(i, i) = mass[i] * c[0];
             for (unsigned int k = 0; k < 2; ++k)
               set[k].contact_force = Tensor<1, dim>();
             collisions.add_to_particle_rows(set, c, r, &D);
             if (r.norm() < 1e-13)
               break;
-            y -= D.fullPivLu().solve(r);
+            y -= Eigen::MatrixXd(D).fullPivLu().solve(r);
           }
         set.set_unknowns(y);
         {

@@ -131,7 +131,7 @@ namespace
       {
         s.r_p[i] = 0.5 - i;
         for (unsigned int j = 0; j < m; ++j)
-          full(n + i, n + j) = s.D(i, j) = (i == j ? 4.0 : 0.3);
+          full(n + i, n + j) = s.D.coeffRef(i, j) = (i == j ? 4.0 : 0.3);
       }
     return full;
   }

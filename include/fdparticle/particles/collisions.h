@@ -12,6 +12,7 @@
 #include <fdparticle/particles/repulsion_law.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include <array>
 #include <memory>
@@ -80,7 +81,7 @@ namespace fdparticle
      * particles couples their rows). Adds F to each particle's contact_force for output.
      */
     void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
-                              Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
 
     /// Pairs of balls closer than the contact range at their current positions, and the
     /// smallest gap between two balls, capped at the diameter of the largest ball (the

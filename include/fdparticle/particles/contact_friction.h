@@ -6,6 +6,7 @@
 #include <fdparticle/particles/particle_set.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include <array>
 #include <functional>
@@ -49,7 +50,7 @@ namespace fdparticle
      */
     void add(ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
              const Tensor<1, dim> &shift, const NormalForce &normal_force,
-             const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+             const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
 
   private:
     static constexpr unsigned int n_unknowns = RigidBody<dim>::n_unknowns;

@@ -10,6 +10,7 @@
 #include <fdparticle/particles/particle_set.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include <array>
 #include <memory>
@@ -50,7 +51,7 @@ namespace fdparticle
     /// Subtract the correction at X^{n+1}(V), V from the force-balance rows of the free
     /// balls, its derivative from D (if given), and add it to every ball's contact_force.
     void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
-                              Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
 
     /// The correction's law at gap g and normal relative velocity v_n, for reduced radius
     /// a*.

@@ -6,6 +6,7 @@
 #include <fdparticle/particles/particle_set.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include <array>
 
@@ -58,7 +59,7 @@ namespace fdparticle
      * given), and add F to the contact_force of each ball for output.
      */
     void add(ParticleSet<dim> &particles, const NormalLawValue &f,
-             const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+             const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
 
   private:
     unsigned int   i = 0, j = numbers::invalid_unsigned_int;

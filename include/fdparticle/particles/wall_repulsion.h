@@ -11,6 +11,7 @@
 #include <fdparticle/particles/repulsion_law.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include <array>
 #include <optional>
@@ -52,7 +53,7 @@ namespace fdparticle
      * block. Also adds F to each particle's contact_force for output.
      */
     void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
-                              Eigen::VectorXd &r_p, Eigen::MatrixXd *D) const;
+                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
 
   private:
     bool                  on = true;

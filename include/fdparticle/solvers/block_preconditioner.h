@@ -6,9 +6,11 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <fdparticle/solvers/bordered_operator.h>
+#include <fdparticle/solvers/cut_cell_patch.h>
 #include <fdparticle/solvers/newton_system.h>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseLU>
 
 #include <memory>
 #include <vector>
@@ -47,7 +49,8 @@ namespace fdparticle
    * pairing ∫_P α λ·v + μ ∇λ:∇v is the part of K (ρ_f c0 mass + viscous term) on the
    * particle, so M K⁻¹ Mᵀ is close to M itself read as a matrix on λ (the numbering makes
    * A_λu square, NewtonSystem::Blocks): one AMG V-cycle on A_λλ + M. The particle unknowns
-   * stay with λ through their m×m Schur complement D − C S_λ⁻¹ B, m V-cycles at setup.
+   * stay with λ through their Schur complement D − C S_λ⁻¹ B, kept particle by particle:
+   * particle_block_size V-cycles at setup, whatever the number of particles.
    */
   class BlockPreconditioner
   {
@@ -60,6 +63,8 @@ namespace fdparticle
     /// Relative tolerance and iteration limit of the inner solve for (u, λ, y).
     double       inner_tolerance      = 1e-3;
     unsigned int max_inner_iterations = 100;
+    /// Rings of cells around the cut cells in the patch solve (CutCellPatch); −1: none.
+    int patch_layers = -1;
 
     /// Build from the system's current values. The system and the operator must outlive
     /// the preconditioner's use; A keeps being read (for the current values).
@@ -67,8 +72,12 @@ namespace fdparticle
     bool initialized() const { return velocity_matrix != nullptr; }
     void clear();
 
-    /// dst = P⁻¹ src.
+    /// dst = P⁻¹ src, followed by the patch correction dst += R A_patch⁻¹ Rᵀ (src − J dst)
+    /// (multiplicative: the patch repairs what the block triangle leaves near the cut cells).
     void vmult(BlockVector &dst, const BlockVector &src) const;
+
+    /// Unknowns in the cut-cell patch, over all ranks.
+    types::global_dof_index patch_size() const { return n_patch; }
 
     /// Inner FGMRES iterations since initialize().
     unsigned int inner_iterations() const { return n_inner_iterations; }
@@ -107,9 +116,11 @@ namespace fdparticle
     void initialize_pressure_cells();
     /// L and its AMG (Cahouet–Chabard's inertial term of S_p⁻¹);
     void initialize_pressure_laplacian();
-    /// the LU of the particle unknowns' Schur complement D − C S_λ⁻¹ B.
+    /// the LU of the particle unknowns' Schur complement D − C S_λ⁻¹ B, particle by particle.
     void initialize_particle_block();
 
+    /// The block-triangular preconditioner P⁻¹ alone.
+    void vmult_blocks(BlockVector &dst, const BlockVector &src) const;
     /// The block-triangular approximation of J_w: dst = P_w⁻¹ src (pressure part 0).
     void vmult_rest(BlockVector &dst, const BlockVector &src) const;
     /// dst = J_w src (src's pressure part is 0; dst's is set to 0).
@@ -134,14 +145,19 @@ namespace fdparticle
     static constexpr double laplacian_shift = 1e-6;
     /// S_p⁻¹, cell by cell (row-major blocks as NewtonSystem::Blocks::pressure_mass).
     std::vector<double> pressure_inverse;
-    /// LU of D − C S_λ⁻¹ B.
-    Eigen::FullPivLU<Eigen::MatrixXd> particle_schur;
+    /// LU of D − C S_λ⁻¹ B with C S_λ⁻¹ B kept particle by particle (sparse: the
+    /// particles' own blocks and D's contact blocks).
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> particle_schur;
 
     mutable unsigned int n_inner_iterations = 0;
     /// Work vectors: A layout, velocity block, multiplier block, Krylov layout.
     mutable TrilinosWrappers::MPI::Vector full, full2, pressure_part, u_in, u_out, l_in, l_out,
       p_in, p_out;
-    mutable BlockVector                   inner_rhs;
+    mutable BlockVector                   inner_rhs, patch_residual;
+    /// The exact solve near the cut cells, and whether any rank has one.
+    CutCellPatch patch;
+    bool                    patch_active = false;
+    types::global_dof_index n_patch      = 0;
   };
 } // namespace fdparticle
 

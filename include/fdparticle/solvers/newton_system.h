@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <Epetra_CrsMatrix.h>
 
 #include <array>
@@ -26,7 +27,10 @@ namespace fdparticle
    * Particle unknown j couples only to the DoFs of the cells its ball meets, so B and C are
    * sparse: B (n × m) and Cᵀ (n × m) are distributed by rows like A, with the pattern of
    * those cells, and cost memory in proportion to the particles' cells, not m full-length
-   * vectors. D is a small dense (Eigen) matrix, replicated on every rank.
+   * vectors. D (m × m) is sparse too, replicated on every rank: each free particle's
+   * own block (its mass, or the kinematic closure's volume, on the diagonal) and the
+   * blocks that contact forces add between two particles, so its memory grows like the
+   * particles and their contacts, not like m².
    *
    * Storage only: the assembler and the particle interactions write into it, a LinearSolver
    * reads it. The blocks are public members, as the finite-element assembly writes A, B, C
@@ -66,9 +70,6 @@ namespace fdparticle
     /// are in the order of r_fe's owned entries.
     template <typename F>
     static void for_each_entry(const TrilinosWrappers::SparseMatrix &border, const F &f);
-    /// The owned non-zeros of each column of B or Cᵀ as (local row, value).
-    static std::vector<std::vector<std::pair<int, double>>>
-    columns(const TrilinosWrappers::SparseMatrix &border);
 
     /// Zero the residuals, and A, B, C, D too if with_matrix.
     void zero(const bool with_matrix);
@@ -118,6 +119,9 @@ namespace fdparticle
       /// The diagonal of the velocity mass matrix (0 at constrained DoFs), in r_fe's
       /// layout, written with the pressure masses.
       TrilinosWrappers::MPI::Vector velocity_mass;
+      /// The unknowns of one free particle (its velocity and rotations), consecutive in
+      /// the particle block: the size of the diagonal blocks of D.
+      unsigned int particle_block_size = 0;
       /// ρ_f c0 and μ of the step: the scales of the pressure Schur complement.
       double mass_coefficient = 0, viscosity = 0;
     };
@@ -126,7 +130,7 @@ namespace fdparticle
     TrilinosWrappers::SparseMatrix A;
     /// B and C transposed; empty (0 × 0) when there are no particle unknowns.
     TrilinosWrappers::SparseMatrix B, C_transposed;
-    Eigen::MatrixXd                D;
+    Eigen::SparseMatrix<double>    D;
     TrilinosWrappers::MPI::Vector  r_fe;
     Eigen::VectorXd                r_p;
   };

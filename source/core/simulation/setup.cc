@@ -143,6 +143,7 @@ namespace fdparticle
     DoFTools::extract_constant_modes(dof_handler,
                                      fe.component_mask(Introspection<dim>::velocities()),
                                      b.velocity_modes);
+    b.particle_block_size = RigidBody<dim>::n_unknowns;
 
     // The block solver reads the pairing matrix off the λ–u block of A (see above); it
     // would precondition with nonsense if the pairing of the numbers broke, so check it.

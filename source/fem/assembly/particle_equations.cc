@@ -23,7 +23,7 @@ namespace fdparticle
             system.r_p[f + d] =
               drho * P.volume() * (dVdt[d] - fluid.gravity[d]) + integrals[k].lambda_force[d];
             if (with_matrix)
-              system.D(f + d, f + d) = drho * P.volume() * c[0];
+              system.D.coeffRef(f + d, f + d) = drho * P.volume() * c[0];
           }
         for (unsigned int j = 0; j < RB::n_rotations; ++j)
           {
@@ -33,14 +33,14 @@ namespace fdparticle
                 system.r_p[f + dim + j] =
                   drho * P.inertia() * (dwdt * e) + integrals[k].lambda_torque * e;
                 if (with_matrix)
-                  system.D(f + dim + j, f + dim + j) = drho * P.inertia() * c[0];
+                  system.D.coeffRef(f + dim + j, f + dim + j) = drho * P.inertia() * c[0];
               }
             else
               {
                 system.r_p[f + dim + j] =
                   integrals[k].volume * (P.omega * e) - 0.5 * (integrals[k].curl_u * e);
                 if (with_matrix)
-                  system.D(f + dim + j, f + dim + j) = integrals[k].volume;
+                  system.D.coeffRef(f + dim + j, f + dim + j) = integrals[k].volume;
               }
           }
       }

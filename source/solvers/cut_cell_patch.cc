@@ -1,0 +1,147 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <fdparticle/solvers/cut_cell_patch.h>
+
+#include <Epetra_CrsMatrix.h>
+
+namespace fdparticle
+{
+  void CutCellPatch::clear()
+  {
+    patch_rows.clear();
+    matrix.clear();
+  }
+
+  void CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers)
+  {
+    clear();
+    using Blocks               = NewtonSystem::Blocks;
+    const Epetra_CrsMatrix &E  = system.A.trilinos_matrix();
+    const auto &            b  = system.blocks;
+    const auto &            range =
+      b.range[Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator())];
+    // This rank's DoFs, numbered locally from 0: u | λ | p (NewtonSystem::Blocks).
+    const long long    first = range[0], end = range[Blocks::n_blocks];
+    const unsigned int n_local = end - first;
+    const unsigned int o_l     = range[Blocks::multiplier] - first;
+    const unsigned int o_p     = range[Blocks::pressure] - first;
+    const unsigned int npc     = b.pressure_dofs_per_cell;
+    const unsigned int n_cells = (end - range[Blocks::pressure]) / npc;
+    auto block_of = [&](const unsigned int local) {
+      return local < o_l ? Blocks::velocity : local < o_p ? Blocks::multiplier : Blocks::pressure;
+    };
+
+    std::vector<bool>         in_patch(n_local, false), cell_in(n_cells, false);
+    std::vector<unsigned int> new_cells;
+    // Seeds: the cut cells, with a fluid part and a particle part (the pressure mass over
+    // the fluid part sums the same terms as the whole where all points are fluid, none
+    // where all are the particle's, so both ends compare exactly).
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        double fluid = 0, whole = 0;
+        for (unsigned int i = 0; i < npc; ++i)
+          {
+            const unsigned int k = (c * npc + i) * npc + i;
+            fluid += b.pressure_fluid_mass[k];
+            whole += b.pressure_mass[k];
+          }
+        if (fluid > 0 && fluid < whole)
+          new_cells.push_back(c);
+      }
+
+    auto row_columns = [&](const unsigned int local, const auto &f) {
+      int     n;
+      double *v;
+      int *   c;
+      E.ExtractMyRowView(local, n, v, c);
+      for (int k = 0; k < n; ++k)
+        {
+          const long long g = E.GCID64(c[k]);
+          if (g >= first && g < end)
+            f(static_cast<unsigned int>(g - first));
+        }
+    };
+    for (unsigned int layer = 0;; ++layer)
+      {
+        // The new cells' pressure DoFs, and the velocity (and multiplier) DoFs they couple to.
+        std::vector<unsigned int> new_velocities;
+        for (const unsigned int c : new_cells)
+          {
+            cell_in[c] = true;
+            for (unsigned int i = 0; i < npc; ++i)
+              {
+                const unsigned int p = o_p + c * npc + i;
+                in_patch[p]          = true;
+                row_columns(p, [&](const unsigned int j) {
+                  if (block_of(j) == Blocks::velocity && !in_patch[j])
+                    {
+                      // The multiplier DoF at the same node and component.
+                      in_patch[j]       = true;
+                      in_patch[o_l + j] = true;
+                      new_velocities.push_back(j);
+                    }
+                });
+              }
+          }
+        if (layer == layers)
+          break;
+        new_cells.clear();
+        for (const unsigned int u : new_velocities)
+          row_columns(u, [&](const unsigned int j) {
+            if (block_of(j) == Blocks::pressure && !cell_in[(j - o_p) / npc])
+              {
+                cell_in[(j - o_p) / npc] = true;
+                new_cells.push_back((j - o_p) / npc);
+              }
+          });
+      }
+
+    std::vector<int> index(n_local, -1);
+    for (unsigned int i = 0; i < n_local; ++i)
+      if (in_patch[i])
+        {
+          index[i] = patch_rows.size();
+          patch_rows.push_back(i);
+        }
+    if (patch_rows.empty())
+      return;
+    DynamicSparsityPattern dsp(patch_rows.size());
+    for (unsigned int r = 0; r < patch_rows.size(); ++r)
+      row_columns(patch_rows[r], [&](const unsigned int j) {
+        if (index[j] >= 0)
+          dsp.add(r, index[j]);
+      });
+    pattern.copy_from(dsp);
+    matrix.reinit(pattern);
+    for (unsigned int r = 0; r < patch_rows.size(); ++r)
+      {
+        int     n;
+        double *v;
+        int *   c;
+        E.ExtractMyRowView(patch_rows[r], n, v, c);
+        for (int k = 0; k < n; ++k)
+          {
+            const long long g = E.GCID64(c[k]);
+            if (g >= first && g < end && index[g - first] >= 0)
+              matrix.add(r, index[g - first], v[k]);
+          }
+      }
+    factorization.factorize(matrix);
+    work.reinit(patch_rows.size());
+  }
+
+  void CutCellPatch::add_correction(TrilinosWrappers::MPI::Vector &      x,
+                                    const TrilinosWrappers::MPI::Vector &r) const
+  {
+    if (patch_rows.empty())
+      return;
+    const double *in  = r.trilinos_vector()[0];
+    double *      out = x.trilinos_vector()[0];
+    for (unsigned int i = 0; i < patch_rows.size(); ++i)
+      work[i] = in[patch_rows[i]];
+    factorization.solve(work);
+    for (unsigned int i = 0; i < patch_rows.size(); ++i)
+      out[patch_rows[i]] += work[i];
+  }
+} // namespace fdparticle
