@@ -76,6 +76,15 @@ namespace fdparticle
     CellKind classify(const typename Triangulation<dim>::cell_iterator &cell,
                       const ParticleSet<dim> &particles, int &particle) const;
 
+    /// The cell's share of the work in the partition between MPI ranks (deal.II's weight
+    /// signal; integers): weight_resolution for a cell no surface cuts,
+    /// `Cut cell cost` times that for a cut cell. During refinement cell is the parent of
+    /// the cells being weighed, and its kind stands for theirs.
+    unsigned int partition_weight(const typename Triangulation<dim>::cell_iterator &cell,
+                                  const ParticleSet<dim> &particles) const;
+    /// Whether the weights differ from cell to cell (else the plain cell count balances).
+    bool weighted_partition() const { return cut_cell_cost != 1; }
+
     /// The ball whose surface is nearest to the point x of the cell of rule: at a fluid
     /// point of a cut cell, the ball whose radius sets the cut-cell penalties, so a cell
     /// that two balls cut penalizes the fluid near each by that ball's own weight.
@@ -112,6 +121,9 @@ namespace fdparticle
                            std::vector<Point<dim>> &outside_points,
                            std::vector<double> &    outside_weights) const;
 
+    /// The weight of a regular cell in partition_weight: cut-cell costs are kept to 1/16.
+    static constexpr unsigned int weight_resolution = 16;
+    double         cut_cell_cost = 4;
     Method         cut_method = Method::gauss;
     unsigned int   n_cut_points = 7;
     unsigned int   level_set_order = 6;

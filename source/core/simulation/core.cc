@@ -86,6 +86,12 @@ namespace fdparticle
     particles.parse_parameters(prm, domain, comm);
     time.parse_parameters(prm);
     quadrature.parse_parameters(prm);
+    if (quadrature.weighted_partition())
+      triangulation.signals.weight.connect(
+        [this](const typename Triangulation<dim>::cell_iterator &cell,
+               const typename Triangulation<dim>::CellStatus) -> unsigned int {
+          return quadrature.partition_weight(cell, particles);
+        });
     assembler.parse_parameters(prm);
     newton.parse_parameters(prm);
     output.parse_parameters(prm);
@@ -173,7 +179,16 @@ namespace fdparticle
           << particles.n_unknowns() << " particle unknowns, " << particles.size()
           << " particle(s), " << time.scheme_name() << ", "
           << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
-          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)" << std::endl;
+          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)";
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      {
+        // The partition: equal cell counts, or unequal ones where the cut cells weigh more
+        // (Quadrature/Cut cell cost).
+        const auto cells =
+          Utilities::MPI::min_max_avg(double(triangulation.n_locally_owned_active_cells()), comm);
+        pcout << " (" << cells.min << "-" << cells.max << " cells each)";
+      }
+    pcout << std::endl;
     check_resolution();
     if (const std::string line = collisions.describe(time.next_step()); !line.empty())
       pcout << line << std::endl;
