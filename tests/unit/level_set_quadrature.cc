@@ -6,7 +6,9 @@
 // and better as the order rises; measured: order 4 gives 1e-6 to 2e-6 in 3D at R/h = 2.4,
 // so 6 is the default. Also, per cut cell, the inside and outside rules together must
 // integrate ξ⁴η⁴(ζ⁴) exactly: at R/h = 1.2 the cells around the centre are cut, where the
-// level set has no height direction and unsplit rules were 44 % wrong.
+// level set has no height direction and unsplit rules were 44 % wrong. Two balls a tenth
+// of a cell apart: each ball's volume to 1e-6 with the cells both meet halved until each
+// piece meets one ball.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
@@ -41,20 +43,25 @@ namespace
     return s;
   }
 
-  /// One ball of radius R at X in the unit box of N^dim cells, cut by the level-set rule of
-  /// the given order (0: the default order).
+  /// One ball of radius R at X (or the balls of a Particles string) in the unit box of
+  /// N^dim cells, cut by the level-set rule of the given order (0: the default order).
   template <int dim>
   struct OneBall
   {
     OneBall(const unsigned int N, const Point<dim> &X, const double R,
             const unsigned int order = 0)
+      : OneBall(N, vec(X) + " : " + std::to_string(R) + " : 1", order)
+    {}
+
+    /// Balls given as Particles/Particles.
+    OneBall(const unsigned int N, const std::string &balls, const unsigned int order = 0)
       : tria(MPI_COMM_WORLD)
     {
       ParameterHandler prm;
       declare_all_parameters(prm);
       prm.parse_input_from_string(unit_box_parameters<dim>(N) + "subsection Particles\n"
-                                  "  set Particles = " + vec(X) + " : " + std::to_string(R) +
-                                  " : 1\nend\nsubsection Quadrature\n"
+                                  "  set Particles = " + balls +
+                                  "\nend\nsubsection Quadrature\n"
                                   "  set Cut cells = level set\n" +
                                   (order > 0 ? "  set Level set order = " + std::to_string(order) + "\n"
                                              : std::string()) +
@@ -170,6 +177,67 @@ namespace
                         "relative error " + sci(error) + " < 1e-06");
   }
 
+  /// Two balls (R/h = 3.2) a tenth of a cell apart: the cells both meet get level-set
+  /// rules too (halved until each piece meets one ball). Each ball's volume to 1e-6 as
+  /// for one ball, and every shared cell's rule tiles the cell; the Gauss rule these cells
+  /// had before was 1e-4 to 1e-3 off.
+  template <int dim>
+  void two_balls()
+  {
+    const unsigned int N = 16;
+    const double       h = 1.0 / N, R = 0.2, gap = h / 10;
+    Point<dim>         A, B;
+    for (unsigned int d = 0; d < dim; ++d)
+      A[d] = B[d] = 0.5 + (d == 0 ? 0.3 : 0.37) * h; // the contact point inside a cell
+    A[0] -= R + gap / 2;
+    B[0] += R + gap / 2;
+    OneBall<dim> scene(N, vec(A) + " : " + std::to_string(R) + " : 1; " + vec(B) + " : " +
+                            std::to_string(R) + " : 1");
+    typename CutCellQuadrature<dim>::CellRule rule;
+    double                                    volume[2] = {0, 0}, worst_tiling = 0;
+    unsigned int                              shared = 0, most = 0;
+    for (const auto &cell : scene.tria.active_cell_iterators())
+      {
+        scene.quadrature.reinit(cell, scene.particles, rule);
+        if (rule.kind == CellKind::fluid)
+          continue;
+        check(rule.owners_known, "owners known in a level-set rule", "");
+        if (rule.balls.size() > 1)
+          {
+            ++shared;
+            most = std::max<unsigned int>(most, rule.quadrature->size());
+            double whole = 0;
+            for (unsigned int q = 0; q < rule.quadrature->size(); ++q)
+              {
+                double f = rule.quadrature->weight(q);
+                for (unsigned int d = 0; d < dim; ++d)
+                  f *= std::pow(rule.quadrature->point(q)[d], 4);
+                whole += f;
+              }
+            worst_tiling = std::max(worst_tiling, std::abs(whole * std::pow(5.0, dim) - 1));
+          }
+        for (unsigned int q = 0; q < rule.quadrature->size(); ++q)
+          if (rule.owner[q] >= 0)
+            volume[rule.owner[q]] += rule.quadrature->weight(q) * std::pow(h, dim);
+      }
+    const std::string name = std::to_string(dim) + "D balls 0.1 h apart: ";
+    check(shared > 0, name + std::to_string(shared) + " cells meet both balls");
+    for (const unsigned int k : {0, 1})
+      {
+        const double error = std::abs(volume[k] / RigidBody<dim>::volume(R) - 1);
+        check(error < 1e-6, name + "ball " + std::to_string(k) + " volume relative error " +
+                              sci(error) + " < 1e-06");
+      }
+    // Measured 2e-15 (2D) and 6e-10 (3D): the pieces' level-set rules are exact to about
+    // that for these polynomials.
+    check(worst_tiling < 1e-8, name + "every shared cell integrates xi^4 eta^4 (zeta^4) to " +
+                                 sci(worst_tiling) + " < 1e-08");
+    // Measured: 756 (2D) and 19 224 (3D) points in the largest shared-cell rule.
+    const unsigned int bound = (dim == 2 ? 2000 : 50000);
+    check(most < bound, name + std::to_string(most) + " points in the largest shared-cell "
+                          "rule < " + std::to_string(bound));
+  }
+
   template <int dim>
   void run()
   {
@@ -242,5 +310,7 @@ int main(int argc, char **argv)
   run<3>();
   small_ball<2>();
   small_ball<3>();
+  two_balls<2>();
+  two_balls<3>();
   return summary();
 }

@@ -103,10 +103,18 @@ namespace fdparticle
                        const ParticleSet<dim> &particles, CellRule &rule) const;
 
   private:
-    /// Inside and outside rules of the ball k on an axis-aligned cell, mapped to the unit cell.
+    /// The level-set rule of a cut cell (rule.balls known), mapped to the unit cell, with
+    /// the owner of each point.
     void generate_level_set_rule(const typename Triangulation<dim>::cell_iterator &cell,
-                                 const Particle<dim> &particle, const int k,
-                                 CellRule &rule) const;
+                                 const ParticleSet<dim> &particles, CellRule &rule) const;
+
+    /// Append the rule of box (real coordinates) and the owner of each point (a ball of
+    /// balls, or −1): a box that two balls meet is halved until each piece meets one at
+    /// most, up to max_separation_depth halvings.
+    void append_rules(const BoundingBox<dim> &box, const ParticleSet<dim> &particles,
+                      const std::vector<unsigned int> &balls, const unsigned int depth,
+                      std::vector<Point<dim>> &points, std::vector<double> &weights,
+                      std::vector<int> &owners) const;
 
     /**
      * Append to inside and outside the rules (real coordinates) of the parts of box in and
