@@ -33,21 +33,13 @@ namespace fdparticle
     {
       if (K.NumMyRows() != int(rows.size()))
         return false;
-      std::vector<int> now, next;
       for (int r = 0; r < K.NumMyRows(); ++r)
         {
-          int  length;
-          int *local_columns;
-          K.Graph().ExtractMyRowView(r, length, local_columns);
-          if (length != int(rows[r].size()))
+          if (K.NumMyEntries(r) != int(rows[r].size()))
             return false;
-          now.resize(length);
-          for (int k = 0; k < length; ++k)
-            now[k] = K.GCID(local_columns[k]);
-          next = rows[r];
-          std::sort(now.begin(), now.end());
+          std::vector<long long> next(rows[r].begin(), rows[r].end());
           std::sort(next.begin(), next.end());
-          if (now != next)
+          if (NewtonSystem::sorted_columns(K.Graph(), r) != next)
             return false;
         }
       return true;

@@ -38,6 +38,18 @@ namespace fdparticle
     return dofs;
   }
 
+  std::vector<long long> NewtonSystem::sorted_columns(const Epetra_CrsGraph &graph, const int r)
+  {
+    int  length;
+    int *local_columns;
+    graph.ExtractMyRowView(r, length, local_columns);
+    std::vector<long long> columns(length);
+    for (int k = 0; k < length; ++k)
+      columns[k] = graph.GCID64(local_columns[k]);
+    std::sort(columns.begin(), columns.end());
+    return columns;
+  }
+
   bool NewtonSystem::has_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const
   {
     if (A.m() == 0)
@@ -47,24 +59,8 @@ namespace fdparticle
     bool same = now.RowMap().SameAs(next.RowMap()) && now.NumMyRows() == next.NumMyRows() &&
                 now.NumMyNonzeros() == next.NumMyNonzeros();
     for (int r = 0; same && r < now.NumMyRows(); ++r)
-      {
-        int  n_now, n_next;
-        int *c_now, *c_next;
-        now.ExtractMyRowView(r, n_now, c_now);
-        next.ExtractMyRowView(r, n_next, c_next);
-        same = n_now == n_next;
-        // Compare global column indices, sorted (the local numbering of the columns may
-        // differ between the two graphs).
-        std::vector<long long> a(n_now), b(n_next);
-        for (int k = 0; same && k < n_now; ++k)
-          {
-            a[k] = now.GCID64(c_now[k]);
-            b[k] = next.GCID64(c_next[k]);
-          }
-        std::sort(a.begin(), a.end());
-        std::sort(b.begin(), b.end());
-        same = same && a == b;
-      }
+      same = now.NumMyIndices(r) == next.NumMyIndices(r) &&
+             sorted_columns(now, r) == sorted_columns(next, r);
     return Utilities::MPI::min(same ? 1 : 0, sparsity.get_mpi_communicator()) == 1;
   }
 

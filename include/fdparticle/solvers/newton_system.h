@@ -39,6 +39,10 @@ namespace fdparticle
   class NewtonSystem
   {
   public:
+    /// The global columns of the local row r of an Epetra graph, sorted: two graphs (or a
+    /// graph and a list) compare by these, as each numbers its columns locally its own way.
+    static std::vector<long long> sorted_columns(const Epetra_CrsGraph &graph, const int r);
+
     /// Whether A already has this sparsity pattern (same rows on every rank, same global
     /// columns in every row). Collective.
     bool has_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const;
