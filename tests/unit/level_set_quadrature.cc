@@ -78,6 +78,23 @@ namespace
     parallel::distributed::Triangulation<dim> tria;
   };
 
+  /// Relative error of a cell rule (unit cell) on ξ_1⁴⋯ξ_d⁴, whose integral is 1/5^d: the
+  /// Q2 integrands are polynomials of degree 4 a direction, so a rule that tiles the cell
+  /// integrates it exactly.
+  template <int dim>
+  double tiling_error(const Quadrature<dim> &rule)
+  {
+    double whole = 0;
+    for (unsigned int q = 0; q < rule.size(); ++q)
+      {
+        double f = rule.weight(q);
+        for (unsigned int d = 0; d < dim; ++d)
+          f *= std::pow(rule.point(q)[d], 4);
+        whole += f;
+      }
+    return std::abs(whole * std::pow(5.0, dim) - 1);
+  }
+
   /// Relative errors of volume, ∫|x−X|² and ∫(x−X)_⊥z² for one ball, and (last) the worst
   /// relative error over the cut cells of ∫_K ξ_1⁴⋯ξ_d⁴ by the inside and outside rules
   /// together (exactly 1/5^d of |K|: the Q2 integrands are polynomials of degree 4 a direction).
@@ -109,15 +126,7 @@ namespace
             own = std::make_unique<FEValues<dim>>(mapping, fe, *rule.quadrature, flags);
             fv = own.get();
             ++n_generated;
-            double whole = 0;
-            for (unsigned int q = 0; q < rule.quadrature->size(); ++q)
-              {
-                double f = rule.quadrature->weight(q);
-                for (unsigned int d = 0; d < dim; ++d)
-                  f *= std::pow(rule.quadrature->point(q)[d], 4);
-                whole += f;
-              }
-            worst_cell = std::max(worst_cell, std::abs(whole * std::pow(5.0, dim) - 1));
+            worst_cell = std::max(worst_cell, tiling_error(*rule.quadrature));
           }
         fv->reinit(cell);
         quadrature.assign_owners(fv->get_quadrature_points(), particles, rule);
@@ -206,15 +215,7 @@ namespace
           {
             ++shared;
             most = std::max<unsigned int>(most, rule.quadrature->size());
-            double whole = 0;
-            for (unsigned int q = 0; q < rule.quadrature->size(); ++q)
-              {
-                double f = rule.quadrature->weight(q);
-                for (unsigned int d = 0; d < dim; ++d)
-                  f *= std::pow(rule.quadrature->point(q)[d], 4);
-                whole += f;
-              }
-            worst_tiling = std::max(worst_tiling, std::abs(whole * std::pow(5.0, dim) - 1));
+            worst_tiling = std::max(worst_tiling, tiling_error(*rule.quadrature));
           }
         for (unsigned int q = 0; q < rule.quadrature->size(); ++q)
           if (rule.owner[q] >= 0)
