@@ -131,7 +131,7 @@ namespace fdparticle
     initialize_particle_block();
     patch.clear();
     if (patch_layers >= 0)
-      patch.initialize(*system, patch_layers);
+      patch.initialize(*system, patch_layers, patch_fluid_fraction);
     n_patch      = Utilities::MPI::sum<types::global_dof_index>(patch.size(), comm);
     patch_active = n_patch > 0;
     if (patch_active)

@@ -13,7 +13,8 @@ namespace fdparticle
     matrix.clear();
   }
 
-  void CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers)
+  void CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers,
+                                const double max_fluid_fraction)
   {
     clear();
     using Blocks               = NewtonSystem::Blocks;
@@ -36,7 +37,8 @@ namespace fdparticle
     std::vector<unsigned int> new_cells;
     // Seeds: the cut cells, with a fluid part and a particle part (the pressure mass over
     // the fluid part sums the same terms as the whole where all points are fluid, none
-    // where all are the particle's, so both ends compare exactly).
+    // where all are the particle's, so both ends compare exactly), whose fluid part is at
+    // most max_fluid_fraction of the cell.
     for (unsigned int c = 0; c < n_cells; ++c)
       {
         double fluid = 0, whole = 0;
@@ -46,7 +48,7 @@ namespace fdparticle
             fluid += b.pressure_fluid_mass[k];
             whole += b.pressure_mass[k];
           }
-        if (fluid > 0 && fluid < whole)
+        if (fluid > 0 && fluid < whole && fluid <= max_fluid_fraction * whole)
           new_cells.push_back(c);
       }
 

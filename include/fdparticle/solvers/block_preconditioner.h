@@ -65,6 +65,8 @@ namespace fdparticle
     unsigned int max_inner_iterations = 100;
     /// Rings of cells around the cut cells in the patch solve (CutCellPatch); −1: none.
     int patch_layers = -1;
+    /// Only cut cells whose fluid part is at most this fraction seed the patch.
+    double patch_fluid_fraction = 0.25;
 
     /// Build from the system's current values. The system and the operator must outlive
     /// the preconditioner's use; A keeps being read (for the current values).

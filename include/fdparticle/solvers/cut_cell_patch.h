@@ -22,8 +22,9 @@ namespace fdparticle
    * some of its pressure modes are nearly free (the rigid velocity has no divergence to
    * test), others stiff (its velocity nodes are shared with fluid cells), and which is
    * which depends on the neighbours (doc/scaling.md). The patch holds the pressure of
-   * every cut cell, the velocity and multiplier DoFs of those cells, and `layers` more
-   * rings of cells grown through the matrix graph; everything outside is held fixed.
+   * the cut cells that a particle almost covers, the velocity and multiplier DoFs of
+   * those cells, and `layers` more rings of cells grown through the matrix graph;
+   * everything outside is held fixed.
    *
    * Each rank takes only its own DoFs (a restricted additive Schwarz across the ranks):
    * its patch matrix is local and factored by UMFPACK, so nothing is communicated.
@@ -34,9 +35,11 @@ namespace fdparticle
   class CutCellPatch
   {
   public:
-    /// Collect the patch of the current system and factor it. `layers` rings of cells
-    /// beyond the cut cells.
-    void initialize(const NewtonSystem &system, const unsigned int layers);
+    /// Collect the patch of the current system and factor it: the cut cells whose fluid
+    /// part is at most max_fluid_fraction of the cell, and `layers` rings of cells
+    /// beyond them.
+    void initialize(const NewtonSystem &system, const unsigned int layers,
+                    const double max_fluid_fraction);
     void clear();
 
     /// x += R_patchᵀ A_patch⁻¹ R_patch r on the owned entries (A's layout).
