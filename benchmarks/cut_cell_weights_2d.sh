@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
-# Load balance of the cut cells (doc/particles.md): 64 disks (radius 0.04, density 1.1)
-# placed at random in the bottom 30 % of a closed 2 x 2 box, base mesh 32 x 32 refined one
-# level around the disks, level-set cut cells, Collisions/Model = repulsion, 4 steps of
-# 0.005, on RANKS ranks (default 2), for Quadrature/Cut cell cost = 1 (equal cell counts),
-# 2, 4 and 8. Writes doc/cut_cell_weights_2d.csv: per cost, the cells of the smallest and
-# the largest rank, seconds per step, and the assembly seconds per step (TimerOutput,
-# rank 0's wall clock; the ranks wait for each other in the solve), and the plot
-# doc/cut_cell_weights_2d.png.
+# Load balance of the cut cells (doc/particles.md), on RANKS ranks (default 2), two scenes:
+#  - settling: 64 disks (radius 0.04, density 1.1) placed at random in the bottom 30 % of
+#    a closed 2 x 2 box, base mesh 32 x 32 refined one level around the disks (the
+#    partition is redone at every refinement), Collisions/Model = repulsion, 4 steps of
+#    0.005, for Quadrature/Cut cell cost = 1 (equal cell counts), 2, 4 and 8;
+#  - carried: 128 disks (radius 0.04) in eight rows in the bottom half of the same box,
+#    carried up by 0.4 at a prescribed velocity in 10 Stokes steps, on 64 x 64 cells
+#    never refined (the partition follows the disks only by rebalancing), for cost 1 and 4
+#    (CARRIED_COSTS; "1 4 1 4 1 4" repeats each three times).
+# Writes doc/cut_cell_weights_2d.csv: per scene and cost, the cells of the smallest and
+# the largest rank at the start, seconds per step, the assembly seconds per step
+# (TimerOutput, rank 0's wall clock; the ranks wait for each other in the solve) and the
+# repartitions during the steps; and the plot doc/cut_cell_weights_2d.png (settling).
 #
 # Usage (regenerate):  bash benchmarks/cut_cell_weights_2d.sh
 # EXE=PATH overrides the executable, WORK=DIR the work directory, COSTS="1 4" the costs.
@@ -18,9 +23,10 @@ ranks="${RANKS:-2}"
 mkdir -p "$work"
 export OMPI_MCA_mpi_yield_when_idle=1
 csv="$top/doc/cut_cell_weights_2d.csv"
-echo "cut_cell_cost,ranks,min_cells,max_cells,seconds_per_step,assembly_seconds_per_step" > "$csv"
-for cost in ${COSTS:-1 2 4 8}; do
-  cat > "$work/c$cost.prm" <<PRM
+echo "scene,cut_cell_cost,ranks,min_cells,max_cells,seconds_per_step,assembly_seconds_per_step,repartitions" > "$csv"
+
+settling() { # cost
+  cat <<PRM
 set Dimension = 2
 set Gravity = 0, -981
 subsection Geometry
@@ -45,7 +51,7 @@ subsection Particles
 end
 subsection Quadrature
   set Cut cells = level set
-  set Cut cell cost = $cost
+  set Cut cell cost = $1
 end
 subsection Refinement
   set Particle refinement levels = 1
@@ -57,28 +63,64 @@ subsection Time
   set End time = 0.02
   set Time step = 0.005
 end
-subsection Output
-  set Directory = $work/c$cost
-  set VTU interval = 0
+PRM
+}
+
+carried() { # cost
+  awk 'BEGIN { for (row = 0; row < 8; ++row) for (column = 0; column < 16; ++column)
+                printf "%g, %g, 0.04, 1, prescribed, 0, 2\n", 0.0625 + 0.125 * column, 0.1 + 0.125 * row }' \
+    > "$work/carried.csv"
+  cat <<PRM
+set Dimension = 2
+set Gravity = 0, 0
+subsection Geometry
+  set Lower corner = 0, 0
+  set Upper corner = 2, 2
+  set Subdivisions = 64, 64
+end
+subsection Fluid
+  set Convection = false
+end
+subsection Particles
+  set Particle file = $work/carried.csv
+end
+subsection Quadrature
+  set Cut cells = level set
+  set Cut cell cost = $1
+end
+subsection Time
+  set End time = 0.2
+  set Time step = 0.02
 end
 PRM
-  mpirun --oversubscribe -np "$ranks" "$exe" "$work/c$cost.prm" > "$work/c$cost.log"
-  /usr/bin/python3 - "$work" "$cost" "$ranks" >> "$csv" <<'PY'
+}
+
+for scene in settling carried; do
+  costs="${COSTS:-1 2 4 8}"
+  [ "$scene" = carried ] && costs="${CARRIED_COSTS:-1 4}"
+  for cost in $costs; do
+    run="$scene-c$cost"
+    { "$scene" "$cost"
+      printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$work/$run"
+    } > "$work/$run.prm"
+    mpirun --oversubscribe -np "$ranks" "$exe" "$work/$run.prm" > "$work/$run.log"
+    /usr/bin/python3 - "$work" "$run" "$scene" "$cost" "$ranks" >> "$csv" <<'PY'
 import csv, re, sys
-work, cost, ranks = sys.argv[1:4]
-log = open(f"{work}/c{cost}.log").read()
+work, run, scene, cost, ranks = sys.argv[1:6]
+log = open(f"{work}/{run}.log").read()
 cells = re.search(r"\((\d+)-(\d+) cells each\)", log)
 lo, hi = cells.groups() if cells else ("", "")
 def section(name):
     m = re.search(r"\|\s*" + name + r"\s*\|\s*\d+\s*\|\s*([0-9.]+)(m?s)", log)
     return float(m.group(1)) / (1000 if m.group(2) == "ms" else 1) if m else 0.0
-rows = list(csv.DictReader(open(f"{work}/c{cost}/statistics.csv")))
+rows = list(csv.DictReader(open(f"{work}/{run}/statistics.csv")))
 steps = len(rows)
 seconds = sum(float(r["wall_seconds"]) for r in rows) / steps
 assembly = (section("assemble residual") + section("assemble system")) / steps
-print(f"{cost},{ranks},{lo},{hi},{seconds:.3f},{assembly:.3f}")
+print(f"{scene},{cost},{ranks},{lo},{hi},{seconds:.3f},{assembly:.3f},{log.count('partition rebalanced')}")
 PY
-  tail -1 "$csv"
+    tail -1 "$csv"
+  done
 done
 
 gnuplot <<GNUPLOT
@@ -90,6 +132,6 @@ set xlabel "Quadrature/Cut cell cost"
 set ylabel "seconds per step"
 set yrange [0:*]
 set key bottom right
-plot "$csv" every ::1 using 1:5 with linespoints title "whole step", \
-     "$csv" every ::1 using 1:6 with linespoints title "assembly (rank 0)"
+plot "< grep ^settling $csv" using 2:6 with linespoints title "whole step", \
+     "< grep ^settling $csv" using 2:7 with linespoints title "assembly (rank 0)"
 GNUPLOT

@@ -80,7 +80,9 @@ namespace fdparticle
       prm.declare_entry("Cut cell cost", "4", Patterns::Double(1, 1000),
                         "The work of a cut cell relative to a regular one, for the partition "
                         "of the mesh between MPI ranks (balanced by these weights at every "
-                        "refinement of the mesh). 1: the ranks get equal numbers of cells. "
+                        "refinement of the mesh, and again whenever the particles have moved "
+                        "the most loaded rank past 1.1 times the mean load). 1: the ranks get "
+                        "equal numbers of cells and are never rebalanced. "
                         "4 and 8 balance the assembly of 64 level-set disks on 2 ranks "
                         "(doc/particles.md): 23 % less assembly time than 1.");
     }

@@ -75,6 +75,14 @@ namespace fdparticle
     void   setup_blocks();
     /// Refine around the particles (with transfer of the solution and its history).
     void   adapt_mesh(const bool transfer);
+    /// Execute the flagged refinement and the weighted partition, with transfer of the
+    /// solution and its history if asked.
+    void   change_mesh(const bool transfer);
+    /// Repartition the mesh if the cut cells' load has drifted out of balance between the
+    /// ranks; true if it did.
+    bool   rebalance();
+    /// " (min-max cells each)" on several ranks, "" on one.
+    std::string partition_summary() const;
     /// The constraints of a step; returns where the particles are, as setup_matrix needs it.
     typename NavierStokesAssembler<dim>::ParticleSupport make_constraints();
     void setup_matrix(const typename NavierStokesAssembler<dim>::ParticleSupport &support);
@@ -97,6 +105,13 @@ namespace fdparticle
     /// Steps the estimate of the time left averages over: enough to smooth the noise of
     /// single steps, few enough to follow a change of the time step or of the mesh.
     static constexpr std::size_t progress_window = 10;
+    /// Load of the most loaded rank over the mean (cell weights of Quadrature/Cut cell
+    /// cost) above which rebalance() repartitions. A fresh weighted partition is balanced
+    /// to a cell or two; a repartition costs a mesh change with the transfer of three
+    /// solution vectors and a new DoF numbering, about as much as a refinement pass. 10 %
+    /// of the assembly, which is a fifth to a half of a step on the scenes of
+    /// doc/particles.md, is where waiting costs more than that.
+    static constexpr double max_partition_imbalance = 1.1;
 
     MPI_Comm            comm;
     ConditionalOStream  pcout;

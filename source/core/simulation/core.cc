@@ -180,15 +180,7 @@ namespace fdparticle
           << " particle(s), " << time.scheme_name() << ", "
           << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
           << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)";
-    if (Utilities::MPI::n_mpi_processes(comm) > 1)
-      {
-        // The partition: equal cell counts, or unequal ones where the cut cells weigh more
-        // (Quadrature/Cut cell cost).
-        const auto cells =
-          Utilities::MPI::min_max_avg(double(triangulation.n_locally_owned_active_cells()), comm);
-        pcout << " (" << cells.min << "-" << cells.max << " cells each)";
-      }
-    pcout << std::endl;
+    pcout << partition_summary() << std::endl;
     check_resolution();
     if (const std::string line = collisions.describe(time.next_step()); !line.empty())
       pcout << line << std::endl;

@@ -182,29 +182,69 @@ namespace fdparticle
       {
         if (!refinement.mark(triangulation, particles, domain, base_level))
           return;
-        TimerOutput::Scope t(*timer, "refinement");
-        triangulation.prepare_coarsening_and_refinement();
-        if (!transfer)
-          {
-            triangulation.execute_coarsening_and_refinement();
-            continue;
-          }
-        std::vector<TrilinosWrappers::MPI::Vector> ghosted(3, solution_ghost);
-        ghosted[0] = solution;
-        ghosted[1] = old_solution;
-        ghosted[2] = old_old_solution;
-        parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer_(
-          dof_handler);
-        transfer_.prepare_for_coarsening_and_refinement(
-          std::vector<const TrilinosWrappers::MPI::Vector *>{&ghosted[0], &ghosted[1], &ghosted[2]});
-        triangulation.execute_coarsening_and_refinement();
-        setup_dofs();
-        std::vector<TrilinosWrappers::MPI::Vector *> out{&solution, &old_solution,
-                                                          &old_old_solution};
-        transfer_.interpolate(out);
-        for (auto *v : out)
-          static_constraints.distribute(*v);
+        change_mesh(transfer);
       }
+  }
+
+  template <int dim>
+  void Simulation<dim>::change_mesh(const bool transfer)
+  {
+    TimerOutput::Scope t(*timer, "refinement");
+    triangulation.prepare_coarsening_and_refinement();
+    if (!transfer)
+      {
+        triangulation.execute_coarsening_and_refinement();
+        return;
+      }
+    std::vector<TrilinosWrappers::MPI::Vector> ghosted(3, solution_ghost);
+    ghosted[0] = solution;
+    ghosted[1] = old_solution;
+    ghosted[2] = old_old_solution;
+    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer_(
+      dof_handler);
+    transfer_.prepare_for_coarsening_and_refinement(
+      std::vector<const TrilinosWrappers::MPI::Vector *>{&ghosted[0], &ghosted[1], &ghosted[2]});
+    triangulation.execute_coarsening_and_refinement();
+    setup_dofs();
+    std::vector<TrilinosWrappers::MPI::Vector *> out{&solution, &old_solution, &old_old_solution};
+    transfer_.interpolate(out);
+    for (auto *v : out)
+      static_constraints.distribute(*v);
+  }
+
+  template <int dim>
+  bool Simulation<dim>::rebalance()
+  {
+    // The cut cells move with the particles, and a mesh that is not refined around them
+    // is partitioned only once: re-run the weighted partition (a mesh change without
+    // flags) when the most loaded rank carries max_partition_imbalance times the mean.
+    if (!quadrature.weighted_partition() || Utilities::MPI::n_mpi_processes(comm) == 1)
+      return false;
+    double load = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        load += quadrature.partition_weight(cell, particles);
+    const auto loads = Utilities::MPI::min_max_avg(load, comm);
+    if (loads.max <= max_partition_imbalance * loads.avg)
+      return false;
+    change_mesh(true);
+    pcout << "  partition rebalanced: the most loaded rank had " << std::fixed
+          << std::setprecision(2) << loads.max / loads.avg << std::defaultfloat
+          << std::setprecision(6) << " times the mean load" << partition_summary() << std::endl;
+    return true;
+  }
+
+  template <int dim>
+  std::string Simulation<dim>::partition_summary() const
+  {
+    if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      return "";
+    // Equal cell counts, or unequal ones where the cut cells weigh more (Quadrature/Cut
+    // cell cost).
+    const auto cells =
+      Utilities::MPI::min_max_avg(double(triangulation.n_locally_owned_active_cells()), comm);
+    return " (" + std::to_string(int(cells.min)) + "-" + std::to_string(int(cells.max)) +
+           " cells each)";
   }
 
   template <int dim>
@@ -353,6 +393,9 @@ namespace fdparticle
   template void Simulation<2>::start();
   template void Simulation<2>::setup_dofs();
   template void Simulation<2>::adapt_mesh(const bool);
+  template void Simulation<2>::change_mesh(const bool);
+  template bool Simulation<2>::rebalance();
+  template std::string Simulation<2>::partition_summary() const;
   template NavierStokesAssembler<2>::ParticleSupport Simulation<2>::make_constraints();
   template void Simulation<2>::setup_matrix(
     const NavierStokesAssembler<2>::ParticleSupport &);
@@ -362,6 +405,9 @@ namespace fdparticle
   template void Simulation<3>::start();
   template void Simulation<3>::setup_dofs();
   template void Simulation<3>::adapt_mesh(const bool);
+  template void Simulation<3>::change_mesh(const bool);
+  template bool Simulation<3>::rebalance();
+  template std::string Simulation<3>::partition_summary() const;
   template NavierStokesAssembler<3>::ParticleSupport Simulation<3>::make_constraints();
   template void Simulation<3>::setup_matrix(
     const NavierStokesAssembler<3>::ParticleSupport &);

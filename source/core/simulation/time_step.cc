@@ -17,6 +17,7 @@ namespace fdparticle
     const ParticleSet<dim> accepted = particles;
     if (refinement.due(time.step_number()))
       adapt_mesh(true);
+    rebalance();
     // Back to the state of the last accepted step.
     auto roll_back = [&]() {
       particles = accepted;
