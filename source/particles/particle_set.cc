@@ -251,6 +251,8 @@ namespace fdparticle
   template <int dim>
   void ParticleSet<dim>::update_index()
   {
+    static std::uint64_t last_revision = 0;
+    revision = ++last_revision;
     largest_radius = 0;
     for (const Particle<dim> &p : particles)
       largest_radius = std::max(largest_radius, p.radius);

@@ -302,6 +302,53 @@ namespace
           }
       }
   }
+
+  /// The rules a CutCellQuadrature keeps while the geometry stays (one time step) are the
+  /// ones it would generate, and a ball that moved gets new ones: a ball moved by a third
+  /// of a cell after a pass over the cells at its old place, read twice (generated, then
+  /// stored), against a scene that had it at the new place from the start.
+  template <int dim>
+  void stored_rules()
+  {
+    const unsigned int N = 8;
+    const double       R = 0.3;
+    Point<dim>         X, Y;
+    for (unsigned int d = 0; d < dim; ++d)
+      X[d] = Y[d] = 0.5 + 0.01 * (d + 1);
+    Y[0] += 1.0 / (3 * N);
+    OneBall<dim> moved(N, X, R), fresh(N, Y, R);
+    typename CutCellQuadrature<dim>::CellRule rule, expected;
+    for (const auto &cell : moved.tria.active_cell_iterators())
+      moved.quadrature.reinit(cell, moved.particles, rule);
+    // The fresh scene's centre as parsed (its string has 6 decimals).
+    moved.particles[0].position = moved.particles[0].position_old = fresh.particles[0].position;
+    moved.particles.prepare_step(TimeStepper()); // a first step: BDF1, no extrapolation
+
+    const std::string name = std::to_string(dim) + "D ball moved by h/3: ";
+    for (const std::string pass : {"generated", "stored"})
+      {
+        unsigned int cut = 0, different = 0;
+        auto         other = fresh.tria.begin_active();
+        for (const auto &cell : moved.tria.active_cell_iterators())
+          {
+            moved.quadrature.reinit(cell, moved.particles, rule);
+            fresh.quadrature.reinit(other, fresh.particles, expected);
+            ++other;
+            if (expected.kind != CellKind::cut)
+              continue;
+            ++cut;
+            bool same = rule.kind == expected.kind && rule.owner == expected.owner &&
+                        rule.quadrature->size() == expected.quadrature->size();
+            for (unsigned int q = 0; same && q < rule.quadrature->size(); ++q)
+              same = rule.quadrature->point(q) == expected.quadrature->point(q) &&
+                     rule.quadrature->weight(q) == expected.quadrature->weight(q);
+            different += !same;
+          }
+        check(cut > 0 && different == 0, name + pass + " rules of the " + std::to_string(cut) +
+                                           " cut cells equal the new place's (" +
+                                           std::to_string(different) + " differ)");
+      }
+  }
 } // namespace
 
 int main(int argc, char **argv)
@@ -313,5 +360,7 @@ int main(int argc, char **argv)
   small_ball<3>();
   two_balls<2>();
   two_balls<3>();
+  stored_rules<2>();
+  stored_rules<3>();
   return summary();
 }

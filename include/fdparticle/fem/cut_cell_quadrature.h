@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/grid/cell_id.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/hp/q_collection.h>
 #include <deal.II/non_matching/quadrature_generator.h>
@@ -11,6 +12,8 @@
 #include <fdparticle/particles/particle_set.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -128,6 +131,24 @@ namespace fdparticle
                            std::vector<double> &    inside_weights,
                            std::vector<Point<dim>> &outside_points,
                            std::vector<double> &    outside_weights) const;
+
+    /**
+     * The level-set rules of the cut cells met so far, for the particle geometry of
+     * stored_revision (ParticleSet::geometry_revision) and the cells of
+     * stored_triangulation (a CellId names the same cell of the same coarse mesh through
+     * refinement and repartitioning). The geometry is fixed during a time
+     * step (ParticleSet::prepare_step) while the step classifies the cells once and
+     * assembles several times (Newton), so each rule is generated once per step instead of
+     * at every pass; a new geometry empties the store.
+     */
+    struct StoredRule
+    {
+      Quadrature<dim>  quadrature;
+      std::vector<int> owner;
+    };
+    mutable std::map<CellId, StoredRule> stored_rules;
+    mutable std::uint64_t                stored_revision      = 0;
+    mutable const Triangulation<dim> *   stored_triangulation = nullptr;
 
     /// The weight of a regular cell in partition_weight: cut-cell costs are kept to 1/16.
     static constexpr unsigned int weight_resolution = 16;

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 #include <optional>
@@ -168,6 +169,12 @@ namespace fdparticle
      */
     void check_positions(const Domain<dim> &domain, const double time) const;
 
+    /// A number that changes whenever the balls' geometry may have changed (their index is
+    /// rebuilt), unique over every particle set of the run (a copy keeps it): what is
+    /// computed from the geometry, such as the cut cells' rules, stays valid while it is
+    /// the same.
+    std::uint64_t geometry_revision() const { return revision; }
+
     /// The state of every particle (positions, velocity histories, orientation, forces)
     /// as exact text, for checkpoints; load() expects the same particles.
     void save(std::ostream &out) const;
@@ -182,6 +189,8 @@ namespace fdparticle
      * per-point loops (locate, meeting) then cost O(1) instead of O(N) each.
      */
     std::optional<CellList<dim>> index;
+    /// See geometry_revision().
+    std::uint64_t revision = 0;
     /// The centres the index was built with, to assert that it is current.
     std::vector<Point<dim>> indexed_centres;
     double                  largest_radius = 0;
