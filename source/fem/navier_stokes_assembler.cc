@@ -199,16 +199,20 @@ namespace fdparticle
                 }
             }
 
+        s.weights.resize(nq);
+        s.owners = rule.owner;
+        s.nearest_surfaces.resize(nq);
         for (unsigned int q = 0; q < nq; ++q)
           {
             s.q = q;
-            s.JxW = fv.JxW(q);
+            s.JxW = s.weights[q] = fv.JxW(q);
             s.x = fv.quadrature_point(q);
             s.particle = rule.owner[q];
             // Near a contact two balls cut the cell: each fluid point takes its nearer one.
-            s.cut_particle = (rule.kind == CellKind::cut && s.particle < 0 && rule.balls.size() > 1) ?
-                               int(quadrature.nearest_surface(rule, particles, s.x)) :
-                               rule.particle;
+            s.cut_particle = s.nearest_surfaces[q] =
+              (rule.kind == CellKind::cut && s.particle < 0 && rule.balls.size() > 1) ?
+                int(quadrature.nearest_surface(rule, particles, s.x)) :
+                rule.particle;
             for (unsigned int i = 0; i < n; ++i)
               {
                 s.N[i] = fv.shape_value(i, q);
@@ -216,6 +220,12 @@ namespace fdparticle
               }
             for (const AssemblyTerm<dim> *term : terms)
               term->assemble_point(s, copy);
+          }
+        if (with_matrix)
+          {
+            s.reinit_cell_shapes(fv);
+            for (const AssemblyTerm<dim> *term : terms)
+              term->assemble_cell_matrix(s, copy);
           }
 
         cell->get_dof_indices(dof_indices);

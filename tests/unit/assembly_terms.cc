@@ -157,10 +157,13 @@ namespace
         }
       const std::vector<const AssemblyTerm<dim> *> terms{&fluid_momentum, &interior_pressure,
                                                          &pairing, &penalties};
+      s.owners = owner;
+      s.nearest_surfaces.assign(nq, 0);
+      s.weights.resize(nq);
       for (unsigned int q = 0; q < nq; ++q)
         {
           s.q = q;
-          s.JxW = fv.JxW(q);
+          s.JxW = s.weights[q] = fv.JxW(q);
           s.x = fv.quadrature_point(q);
           s.particle = owner[q];
           for (unsigned int i = 0; i < n; ++i)
@@ -170,6 +173,12 @@ namespace
             }
           for (const auto *term : terms)
             term->assemble_point(s, copy);
+        }
+      if (with_matrix)
+        {
+          s.reinit_cell_shapes(fv);
+          for (const auto *term : terms)
+            term->assemble_cell_matrix(s, copy);
         }
       return copy;
     }

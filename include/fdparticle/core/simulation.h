@@ -79,8 +79,8 @@ namespace fdparticle
     /// solution and its history if asked.
     void   change_mesh(const bool transfer);
     /// Repartition the mesh if the cut cells' load has drifted out of balance between the
-    /// ranks; true if it did.
-    bool   rebalance();
+    /// ranks (it says so in a line of its own).
+    void   rebalance();
     /// " (min-max cells each)" on several ranks, "" on one.
     std::string partition_summary() const;
     /// The constraints of a step; returns where the particles are, as setup_matrix needs it.

@@ -213,25 +213,24 @@ namespace fdparticle
   }
 
   template <int dim>
-  bool Simulation<dim>::rebalance()
+  void Simulation<dim>::rebalance()
   {
     // The cut cells move with the particles, and a mesh that is not refined around them
     // is partitioned only once: re-run the weighted partition (a mesh change without
     // flags) when the most loaded rank carries max_partition_imbalance times the mean.
     if (!quadrature.weighted_partition() || Utilities::MPI::n_mpi_processes(comm) == 1)
-      return false;
+      return;
     double load = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         load += quadrature.partition_weight(cell, particles);
     const auto loads = Utilities::MPI::min_max_avg(load, comm);
     if (loads.max <= max_partition_imbalance * loads.avg)
-      return false;
+      return;
     change_mesh(true);
     pcout << "  partition rebalanced: the most loaded rank had " << std::fixed
           << std::setprecision(2) << loads.max / loads.avg << std::defaultfloat
           << std::setprecision(6) << " times the mean load" << partition_summary() << std::endl;
-    return true;
   }
 
   template <int dim>
@@ -394,7 +393,7 @@ namespace fdparticle
   template void Simulation<2>::setup_dofs();
   template void Simulation<2>::adapt_mesh(const bool);
   template void Simulation<2>::change_mesh(const bool);
-  template bool Simulation<2>::rebalance();
+  template void Simulation<2>::rebalance();
   template std::string Simulation<2>::partition_summary() const;
   template NavierStokesAssembler<2>::ParticleSupport Simulation<2>::make_constraints();
   template void Simulation<2>::setup_matrix(
@@ -406,7 +405,7 @@ namespace fdparticle
   template void Simulation<3>::setup_dofs();
   template void Simulation<3>::adapt_mesh(const bool);
   template void Simulation<3>::change_mesh(const bool);
-  template bool Simulation<3>::rebalance();
+  template void Simulation<3>::rebalance();
   template std::string Simulation<3>::partition_summary() const;
   template NavierStokesAssembler<3>::ParticleSupport Simulation<3>::make_constraints();
   template void Simulation<3>::setup_matrix(

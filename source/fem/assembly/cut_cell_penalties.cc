@@ -46,12 +46,28 @@ namespace fdparticle
   {
     if (s.particle >= 0 || s.kind != CellKind::cut || !(fluid_penalty > 0 || strain_penalty > 0))
       return;
-    const double                     mu = fluid.viscosity, alpha = s.alpha;
     const auto &                     N = s.N;
     const auto &                     dN = s.dN;
     const std::vector<unsigned int> &comp = s.component;
     const Tensor<1, dim> &           l = s.lambda[s.q];
     const Tensor<2, dim> &           gl = s.grad_lambda[s.q];
+    const auto [fluid_weight, strain_weight] = weights(s, s.cut_particle, s.JxW);
+    for (const unsigned int a : s.multiplier_dofs)
+      {
+        const unsigned int ca = comp[a];
+        copy.rhs(a) += fluid_weight * l[ca] * N[a];
+        if (strain_weight != 0)
+          for (unsigned int j = 0; j < dim; ++j)
+            copy.rhs(a) += strain_weight * (gl[ca][j] + gl[j][ca]) * dN[a][j];
+      }
+  }
+
+  template <int dim>
+  std::pair<double, double> CutCellPenalties<dim>::weights(const AssemblyScratch<dim> &s,
+                                                           const unsigned int nearest_surface,
+                                                           const double       JxW) const
+  {
+    const double mu = fluid.viscosity, alpha = s.alpha;
     // Optional ramp with the cell's particle fraction θ (Penalty ramp): without it the
     // penalties switch on at full strength when a cell starts to be cut.
     const double ramp = (penalty_ramp > 0 ? std::min(1.0, s.particle_fraction / penalty_ramp) : 1.0);
@@ -60,31 +76,58 @@ namespace fdparticle
     // a weight that does not vanish like α² for α ≪ μ/R² lets the particle leak in
     // proportion to Δt (weight α + μ/R²: settling 10x too fast at Δt = 1). For α ≫ μ/R²
     // the weight is sα, a fixed fraction of the pairing (doc/method.md, "Fluid penalty").
-    const double R = particles[s.cut_particle].radius;
-    const double fluid_weight = ramp * fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * s.JxW;
+    const double R = particles[nearest_surface].radius;
+    const double fluid_weight = ramp * fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * JxW;
     // Strain penalty s_e μ (2ε(λ), ε(η)): softens the rigidity of λ DoFs that live mostly
     // in the fluid (without it the cut cells lock, the particle looks O(h) larger) and is
     // blind to λ's rigid modes, ε(V + θ × r) = 0. Only in cells that own particle points:
     // elsewhere those rigid modes would be held by the vanishing α² term alone
     // (doc/method.md §4, "Strain penalty").
-    const double strain_weight = (s.has_particle ? ramp * strain_penalty * mu * s.JxW : 0.0);
-    for (const unsigned int a : s.multiplier_dofs)
-      {
-        const unsigned int ca = comp[a];
-        copy.rhs(a) += fluid_weight * l[ca] * N[a];
-        if (strain_weight != 0)
-          for (unsigned int j = 0; j < dim; ++j)
-            copy.rhs(a) += strain_weight * (gl[ca][j] + gl[j][ca]) * dN[a][j];
-        if (s.with_matrix)
-          for (const unsigned int b : s.multiplier_dofs)
+    const double strain_weight = (s.has_particle ? ramp * strain_penalty * mu * JxW : 0.0);
+    return {fluid_weight, strain_weight};
+  }
+
+  template <int dim>
+  void CutCellPenalties<dim>::assemble_cell_matrix(const AssemblyScratch<dim> &s,
+                                                   AssemblyCopy<dim> &         copy) const
+  {
+    if (s.kind != CellKind::cut || !(fluid_penalty > 0 || strain_penalty > 0))
+      return;
+    // Over the fluid points: G = Σ_q x(q) x_w(q)ᵀ with the features x = (ψ, ∂_0 ψ, …) and
+    // x_w the values weighted by the fluid weight, the derivatives by the strain weight.
+    const CellShapes<dim> &L  = s.multiplier_shapes;
+    const unsigned int     nf = L.n_functions(), nc = L.n_columns();
+    std::vector<double> &  shapes = copy.product, &weighted = copy.weighted;
+    shapes.clear();
+    weighted.clear();
+    for (unsigned int q = 0; q < L.n_points(); ++q)
+      if (s.owners[q] < 0)
+        {
+          const auto [fluid_weight, strain_weight] = weights(s, s.nearest_surfaces[q], s.weights[q]);
+          shapes.insert(shapes.end(), L.row(q), L.row(q) + nc);
+          for (unsigned int k = 0; k < nc; ++k)
+            weighted.push_back((k < nf ? fluid_weight : strain_weight) * L.row(q)[k]);
+        }
+    std::vector<double> gram(nc * nc, 0.0);
+    add_transpose_product(shapes.size() / nc, nc, nc, 1.0, shapes.data(), nc, weighted.data(), nc,
+                          gram.data(), nc);
+    const auto G = [&](const unsigned int f, const unsigned int a, const unsigned int g,
+                       const unsigned int b) { return gram[L.column(f, a) * nc + L.column(g, b)]; };
+    // s μ α²/(α + μ/R²) δ ψ_a ψ_b + s_e μ (δ ∇ψ_a·∇ψ_b + ∂_cb ψ_a ∂_ca ψ_b)
+    for (unsigned int ca = 0; ca < dim; ++ca)
+      for (unsigned int cb = 0; cb < dim; ++cb)
+        for (unsigned int a = 0; a < nf; ++a)
+          for (unsigned int b = 0; b < nf; ++b)
             {
-              const unsigned int cb = comp[b];
-              double value = strain_weight * dN[a][cb] * dN[b][ca];
+              double value = G(1 + cb, a, 1 + ca, b);
               if (ca == cb)
-                value += fluid_weight * N[a] * N[b] + strain_weight * (dN[a] * dN[b]);
-              copy.matrix(a, b) += value;
+                {
+                  value += G(0, a, 0, b);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    value += G(1 + d, a, 1 + d, b);
+                }
+              copy.matrix(L.dof(ca, a), L.dof(cb, b)) += value;
             }
-      }
   }
 
   template class CutCellPenalties<2>;

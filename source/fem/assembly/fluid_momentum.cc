@@ -27,32 +27,91 @@ namespace fdparticle
         (m_force[comp[i]] * N[i] + two_mu_eps[comp[i]] * dN[i] - s.p[s.q] * dN[i][comp[i]]) * JxW;
     for (const unsigned int i : s.pressure_dofs)
       copy.rhs(i) -= N[i] * div_u * JxW;
-    if (!s.with_matrix)
-      return;
+  }
 
-    // Jacobian.
-    for (const unsigned int i : s.velocity_dofs)
+  template <int dim>
+  void FluidMomentum<dim>::assemble_cell_matrix(const AssemblyScratch<dim> &s,
+                                                AssemblyCopy<dim> &         copy) const
+  {
+    const double           rho = fluid.density, mu = fluid.viscosity, c0 = s.c[0];
+    const CellShapes<dim> &V  = s.velocity_shapes;
+    const unsigned int     nq = V.n_points(), nf = V.n_functions(), nc = V.n_columns();
+
+    // G = Σ_q JxW x(q) x(q)ᵀ over the features x = (φ, ∂_0 φ, …): the mass matrix and every
+    // ∫ ∂_a φ_s ∂_b φ_t.
+    std::vector<double> &weighted = copy.weighted;
+    weighted.resize(nq * nc);
+    for (unsigned int q = 0; q < nq; ++q)
+      for (unsigned int k = 0; k < nc; ++k)
+        weighted[q * nc + k] = s.weights[q] * V.row(q)[k];
+    std::vector<double> gram(nc * nc, 0.0);
+    add_transpose_product(nq, nc, nc, 1.0, V.data(), nc, weighted.data(), nc, gram.data(), nc);
+    const auto G = [&](const unsigned int f, const unsigned int a, const unsigned int g,
+                       const unsigned int b) { return gram[V.column(f, a) * nc + V.column(g, b)]; };
+
+    // Convection, Σ_q JxW φ_s [(u·∇)φ_t, ∂_b u_a φ_t]: column block 0 and 1 + a·dim + b.
+    const unsigned int   n_blocks = 1 + dim * dim;
+    std::vector<double> &convection = copy.product;
+    if (fluid.convection)
       {
-        const unsigned int ci = comp[i];
-        for (const unsigned int j : s.velocity_dofs)
+        weighted.resize(nq * n_blocks * nf);
+        for (unsigned int q = 0; q < nq; ++q)
           {
-            const unsigned int cj = comp[j];
-            // 2μ ε(φ_j):ε(φ_i) = μ (δ ∇N_i·∇N_j + ∂_cj N_i ∂_ci N_j)
-            double value = mu * dN[i][cj] * dN[j][ci];
-            if (ci == cj)
-              value += rho * c[0] * N[i] * N[j] + mu * (dN[i] * dN[j]) +
-                       (fluid.convection ? rho * N[i] * (dN[j] * u) : 0.0);
-            if (fluid.convection)
-              value += rho * N[i] * gu[ci][cj] * N[j];
-            copy.matrix(i, j) += value * JxW;
+            const double *x = V.row(q);
+            double *      z = &weighted[q * n_blocks * nf];
+            for (unsigned int t = 0; t < nf; ++t)
+              {
+                double u_grad = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  u_grad += s.u[q][d] * x[V.column(1 + d, t)];
+                z[t] = s.weights[q] * u_grad;
+                for (unsigned int a = 0; a < dim; ++a)
+                  for (unsigned int b = 0; b < dim; ++b)
+                    z[(1 + a * dim + b) * nf + t] = s.weights[q] * s.grad_u[q][a][b] * x[t];
+              }
           }
-        for (const unsigned int j : s.pressure_dofs)
-          {
-            const double b = -N[j] * dN[i][ci] * JxW;
-            copy.matrix(i, j) += b;
-            copy.matrix(j, i) += b;
-          }
+        convection.assign(nf * n_blocks * nf, 0.0);
+        add_transpose_product(nq, nf, n_blocks * nf, 1.0, V.data(), nc, weighted.data(),
+                              n_blocks * nf, convection.data(), n_blocks * nf);
       }
+
+    // 2μ ε(φ_j):ε(φ_i) = μ (δ ∇N_i·∇N_j + ∂_cj N_i ∂_ci N_j), plus ρ c0 and convection.
+    for (unsigned int ci = 0; ci < dim; ++ci)
+      for (unsigned int cj = 0; cj < dim; ++cj)
+        for (unsigned int a = 0; a < nf; ++a)
+          for (unsigned int b = 0; b < nf; ++b)
+            {
+              double value = mu * G(1 + cj, a, 1 + ci, b);
+              if (ci == cj)
+                {
+                  value += rho * c0 * G(0, a, 0, b);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    value += mu * G(1 + d, a, 1 + d, b);
+                  if (fluid.convection)
+                    value += rho * convection[a * n_blocks * nf + b];
+                }
+              if (fluid.convection)
+                value += rho * convection[a * n_blocks * nf + (1 + ci * dim + cj) * nf + b];
+              copy.matrix(V.dof(ci, a), V.dof(cj, b)) += value;
+            }
+
+    // −∫ q ∇·v in both places: Σ_q JxW ∂_c φ_s ψ_j.
+    const unsigned int n_p = s.pressure_dofs.size();
+    weighted.resize(nq * n_p);
+    for (unsigned int q = 0; q < nq; ++q)
+      for (unsigned int j = 0; j < n_p; ++j)
+        weighted[q * n_p + j] = s.weights[q] * s.pressure_values[q * n_p + j];
+    std::vector<double> divergence(dim * nf * n_p, 0.0);
+    add_transpose_product(nq, dim * nf, n_p, 1.0, V.data() + V.column(1, 0), nc, weighted.data(),
+                          n_p, divergence.data(), n_p);
+    for (unsigned int c = 0; c < dim; ++c)
+      for (unsigned int a = 0; a < nf; ++a)
+        for (unsigned int j = 0; j < n_p; ++j)
+          {
+            const double b = -divergence[(c * nf + a) * n_p + j];
+            copy.matrix(V.dof(c, a), s.pressure_dofs[j]) += b;
+            copy.matrix(s.pressure_dofs[j], V.dof(c, a)) += b;
+          }
   }
 
   template class FluidMomentum<2>;

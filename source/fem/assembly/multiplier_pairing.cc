@@ -1,6 +1,8 @@
 #include <fdparticle/fem/assembly/multiplier_pairing.h>
 #include <fdparticle/particles/rigid_body.h>
 
+#include <array>
+
 namespace fdparticle
 {
   template <int dim>
@@ -42,23 +44,21 @@ namespace fdparticle
     I.curl_u += RB::curl(gu) * JxW;
     I.volume += JxW;
 
-    if (!s.with_matrix)
-      return;
-    // Jacobian: the pairing between λ and u, antisymmetric in sign.
-    for (const unsigned int a : s.multiplier_dofs)
-      for (const unsigned int b : s.velocity_dofs)
-        if (comp[a] == comp[b])
-          {
-            const double m = (alpha * N[a] * N[b] + mu * (dN[a] * dN[b])) * JxW;
-            copy.matrix(a, b) += m;
-            copy.matrix(b, a) -= m;
-          }
-    if (P.first_unknown == numbers::invalid_unsigned_int)
+    // Jacobian: the pairing between λ and u is assembled per cell (assemble_cell_matrix).
+    if (!s.with_matrix || P.first_unknown == numbers::invalid_unsigned_int)
       return;
     // Border: ∂(rigidity)/∂(V, ω) and ∂(particle rows)/∂(λ or u).
     const unsigned int n_rot = RB::n_rotations;
     auto &             B = copy.border_B[k];
     auto &             C = copy.border_C[k];
+    // The rigid rotations about the axes: their velocity e_j × r and gradient at the point.
+    std::array<Tensor<1, dim>, RB::n_rotations> rotation_velocity;
+    std::array<Tensor<2, dim>, RB::n_rotations> rotation_gradient;
+    for (unsigned int j = 0; j < n_rot; ++j)
+      {
+        rotation_velocity[j] = RB::cross(RB::rotation_axis(j), r);
+        rotation_gradient[j] = RB::rotation_gradient(RB::rotation_axis(j));
+      }
     for (const unsigned int a : s.multiplier_dofs)
       {
         const unsigned int ca = comp[a];
@@ -66,9 +66,8 @@ namespace fdparticle
         C(a, ca) += alpha * N[a] * JxW;
         for (unsigned int j = 0; j < n_rot; ++j)
           {
-            const Tensor<1, 3> e = RB::rotation_axis(j);
-            const double       pairing =
-              (alpha * N[a] * RB::cross(e, r)[ca] + mu * (RB::rotation_gradient(e)[ca] * dN[a])) * JxW;
+            const double pairing =
+              (alpha * N[a] * rotation_velocity[j][ca] + mu * (rotation_gradient[j][ca] * dN[a])) * JxW;
             B(a, dim + j) -= pairing;
             if (particles.closure() == AngularVelocityClosure::torque_balance)
               C(a, dim + j) += pairing;
@@ -83,6 +82,40 @@ namespace fdparticle
           for (unsigned int j = 0; j < n_rot; ++j)
             C(b, dim + j) -= 0.5 * (curl * RB::rotation_axis(j)) * JxW;
         }
+  }
+
+  template <int dim>
+  void MultiplierPairing<dim>::assemble_cell_matrix(const AssemblyScratch<dim> &s,
+                                                    AssemblyCopy<dim> &         copy) const
+  {
+    if (!s.has_particle)
+      return;
+    // The pairing between λ and u, antisymmetric in sign, over the points inside particles:
+    // Σ_q JxW (α ψ_s φ_t + μ ∇ψ_s·∇φ_t), one product over the (point, feature) pairs.
+    const CellShapes<dim> &L = s.multiplier_shapes, &V = s.velocity_shapes;
+    const unsigned int     nf = V.n_functions(), nc = V.n_columns();
+    Assert(L.n_functions() == nf, ExcInternalError());
+    std::vector<double> &shapes = copy.product, &weighted = copy.weighted;
+    shapes.clear();
+    weighted.clear();
+    for (unsigned int q = 0; q < V.n_points(); ++q)
+      if (s.owners[q] >= 0)
+        {
+          shapes.insert(shapes.end(), L.row(q), L.row(q) + nc);
+          for (unsigned int k = 0; k < nc; ++k)
+            weighted.push_back((k < nf ? s.alpha : fluid.viscosity) * s.weights[q] * V.row(q)[k]);
+        }
+    std::vector<double> pairing(nf * nf, 0.0);
+    add_transpose_product(shapes.size() / nf, nf, nf, 1.0, shapes.data(), nf, weighted.data(), nf,
+                          pairing.data(), nf);
+    for (unsigned int c = 0; c < dim; ++c)
+      for (unsigned int a = 0; a < nf; ++a)
+        for (unsigned int b = 0; b < nf; ++b)
+          {
+            const double m = pairing[a * nf + b];
+            copy.matrix(L.dof(c, a), V.dof(c, b)) += m;
+            copy.matrix(V.dof(c, b), L.dof(c, a)) -= m;
+          }
   }
 
   template class MultiplierPairing<2>;

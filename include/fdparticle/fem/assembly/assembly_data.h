@@ -7,6 +7,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <fdparticle/fem/assembly/cell_shapes.h>
 #include <fdparticle/fem/assembly/particle_integrals.h>
 #include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/fem/introspection.h>
@@ -19,9 +20,10 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * What every assembly term reads at one quadrature point (doc/method.md §3): the step's
-   * constants, the cell's kind, the shape functions and the current iterate there.
-   * NavierStokesAssembler fills it cell by cell and point by point; the terms only read it.
+   * What every assembly term reads (doc/method.md §3): the step's constants, the cell's
+   * kind, the current iterate and the shape functions at one quadrature point and, for the
+   * Jacobian's cell products, at all points of the cell. NavierStokesAssembler fills it
+   * cell by cell and point by point; the terms only read it.
    */
   template <int dim>
   struct AssemblyScratch
@@ -32,6 +34,8 @@ namespace fdparticle
       , alpha(alpha)
       , with_matrix(with_matrix)
       , component(fe.n_dofs_per_cell())
+      , velocity_shapes(fe, Introspection<dim>::Field::velocity)
+      , multiplier_shapes(fe, Introspection<dim>::Field::multiplier)
       , N(fe.n_dofs_per_cell())
       , dN(fe.n_dofs_per_cell())
     {
@@ -55,6 +59,18 @@ namespace fdparticle
         }
     }
 
+    /// Read the shape functions at all points of the cell of fv, for the cell products.
+    void reinit_cell_shapes(const FEValues<dim> &fv)
+    {
+      velocity_shapes.reinit(fv);
+      multiplier_shapes.reinit(fv);
+      const unsigned int n_q = fv.n_quadrature_points, n_p = pressure_dofs.size();
+      pressure_values.resize(n_q * n_p);
+      for (unsigned int q = 0; q < n_q; ++q)
+        for (unsigned int j = 0; j < n_p; ++j)
+          pressure_values[q * n_p + j] = fv.shape_value(pressure_dofs[j], q);
+    }
+
     // The step.
     std::array<double, 3> c;           ///< BDF weights: ∂_t u ≈ c0 u + c1 u^n + c2 u^{n−1}
     double                alpha;       ///< α of the pairing <λ, v> (doc/method.md §0)
@@ -73,6 +89,14 @@ namespace fdparticle
     std::vector<Tensor<1, dim>> u, u_history, lambda;
     std::vector<Tensor<2, dim>> grad_u, grad_lambda;
     std::vector<double>         p;
+    // Every point of the cell: its weight JxW, its owner (−1: fluid) and, for a fluid point
+    // of a cut cell, the ball whose surface is nearest.
+    std::vector<double> weights;
+    std::vector<int>    owners, nearest_surfaces;
+    // The shape functions at every point of the cell (only with_matrix): u and λ as
+    // CellShapes, the pressure's as a row-major n_points × pressure_dofs matrix.
+    CellShapes<dim>     velocity_shapes, multiplier_shapes;
+    std::vector<double> pressure_values;
 
     // The point.
     unsigned int                q = 0;
@@ -108,6 +132,9 @@ namespace fdparticle
     std::vector<int> touching;
     /// Summed over all cells of this rank (not reset per cell).
     std::vector<ParticleIntegrals<dim>> integrals;
+    /// Workspace of the cell products (weighted shape matrices and their products), kept
+    /// from cell to cell to spare the allocations.
+    std::vector<double> weighted, product;
   };
 } // namespace fdparticle
 

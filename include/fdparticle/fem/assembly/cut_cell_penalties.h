@@ -7,6 +7,8 @@
 #include <fdparticle/fem/assembly/assembly_term.h>
 #include <fdparticle/particles/particle_set.h>
 
+#include <utility>
+
 namespace fdparticle
 {
   /**
@@ -29,8 +31,14 @@ namespace fdparticle
       , particles(particles)
     {}
     void assemble_point(const AssemblyScratch<dim> &s, AssemblyCopy<dim> &copy) const override;
+    void assemble_cell_matrix(const AssemblyScratch<dim> &s, AssemblyCopy<dim> &copy) const override;
 
   private:
+    /// The fluid and strain weights of a fluid point of weight JxW whose nearest surface is
+    /// that of particle nearest_surface.
+    std::pair<double, double> weights(const AssemblyScratch<dim> &s,
+                                      const unsigned int nearest_surface, const double JxW) const;
+
     const Fluid<dim> &      fluid;
     const ParticleSet<dim> &particles;
     double                  fluid_penalty = 0.01;

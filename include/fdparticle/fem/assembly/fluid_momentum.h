@@ -20,6 +20,7 @@ namespace fdparticle
       : fluid(fluid)
     {}
     void assemble_point(const AssemblyScratch<dim> &s, AssemblyCopy<dim> &copy) const override;
+    void assemble_cell_matrix(const AssemblyScratch<dim> &s, AssemblyCopy<dim> &copy) const override;
 
   private:
     const Fluid<dim> &fluid;

@@ -25,6 +25,7 @@ namespace fdparticle
       , particles(particles)
     {}
     void assemble_point(const AssemblyScratch<dim> &s, AssemblyCopy<dim> &copy) const override;
+    void assemble_cell_matrix(const AssemblyScratch<dim> &s, AssemblyCopy<dim> &copy) const override;
 
   private:
     const Fluid<dim> &      fluid;
