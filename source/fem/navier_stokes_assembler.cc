@@ -109,14 +109,24 @@ namespace fdparticle
     NewtonSystem &system) const
   {
     using RB = RigidBody<dim>;
-    const FEValuesExtractors::Vector velocities = Introspection<dim>::velocities();
-    const FEValuesExtractors::Vector multipliers = Introspection<dim>::multipliers();
-    const FEValuesExtractors::Scalar pressure = Introspection<dim>::pressure();
+    // The FEValues of the scalar elements: the FE_Q that u and λ share, and the pressure's
+    // (AssemblyScratch::reinit), for each kind of rule.
+    const auto base_of = [&](const unsigned int component) -> const FiniteElement<dim> & {
+      return fe.base_element(fe.component_to_base_index(component).first);
+    };
+    const FiniteElement<dim> &scalar_fe = base_of(Introspection<dim>::first_velocity_component);
+    const FiniteElement<dim> &pressure_fe = base_of(Introspection<dim>::pressure_component);
+    Assert(base_of(Introspection<dim>::first_multiplier_component).get_name() == scalar_fe.get_name(),
+           ExcMessage("u and λ must have the same scalar element."));
     const UpdateFlags flags =
       update_values | update_gradients | update_quadrature_points | update_JxW_values;
-    FEValues<dim> fe_regular(mapping, fe, quadrature.regular_rule(), flags);
-    FEValues<dim> fe_cut(mapping, fe, quadrature.cut_rule(), flags);
-    std::unique_ptr<FEValues<dim>> fe_cell_specific;
+    FEValues<dim> fe_regular(mapping, scalar_fe, quadrature.regular_rule(), flags);
+    FEValues<dim> fe_cut(mapping, scalar_fe, quadrature.cut_rule(), flags);
+    const UpdateFlags pressure_flags = update_values | update_gradients;
+    FEValues<dim> pressure_regular(mapping, pressure_fe, quadrature.regular_rule(), pressure_flags);
+    FEValues<dim> pressure_cut(mapping, pressure_fe, quadrature.cut_rule(), pressure_flags);
+    std::unique_ptr<FEValues<dim>> fe_cell_specific, pressure_cell_specific;
+    Vector<double> local_solution(fe.n_dofs_per_cell()), local_history(fe.n_dofs_per_cell());
 
     // α of the pairing <λ, v> (doc/method.md §0); the fluid's own ρ c0 u stays in the momentum rows.
     const double alpha =
@@ -135,18 +145,9 @@ namespace fdparticle
     NewtonSystem::Blocks &blocks         = system.blocks;
     const unsigned int    n_p            = blocks.pressure_dofs_per_cell;
     const bool            fluid_mass     = with_matrix && n_p > 0;
-    std::vector<unsigned int> pressure_local, velocity_local; // shape functions of p and u
     types::global_dof_index   first_pressure = 0; // this rank's first pressure DoF
     if (fluid_mass)
       {
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const auto field = Introspection<dim>::field(fe.system_to_component_index(i).first);
-            if (field == Introspection<dim>::Field::pressure)
-              pressure_local.push_back(i);
-            else if (field == Introspection<dim>::Field::velocity)
-              velocity_local.push_back(i);
-          }
         const auto &range = blocks.range[Utilities::MPI::this_mpi_process(
           dof_handler.get_communicator())];
         first_pressure = range[NewtonSystem::Blocks::pressure];
@@ -163,25 +164,20 @@ namespace fdparticle
           continue;
         quadrature.reinit(cell, particles, rule);
         FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
+        FEValues<dim> &fv_p =
+          fe_values_for<dim>(rule, pressure_regular, pressure_cut, pressure_cell_specific);
         fv.reinit(cell);
+        fv_p.reinit(cell);
         quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
 
-        // The cell: its kind and the iterate at its points.
+        // The cell: its kind, its shape functions and the iterate at its points.
         const unsigned int nq = fv.n_quadrature_points;
         s.kind = rule.kind;
         s.has_particle = rule.has_particle_point();
         s.particle_fraction = (rule.kind == CellKind::cut ? particle_fraction_of(fv, rule) : 0.0);
-        s.u.resize(nq), s.u_history.resize(nq), s.grad_u.resize(nq), s.p.resize(nq);
-        fv[velocities].get_function_values(solution, s.u);
-        fv[velocities].get_function_gradients(solution, s.grad_u);
-        fv[velocities].get_function_values(history, s.u_history);
-        fv[pressure].get_function_values(solution, s.p);
-        if (s.has_particle || rule.kind == CellKind::cut)
-          {
-            s.lambda.resize(nq), s.grad_lambda.resize(nq);
-            fv[multipliers].get_function_values(solution, s.lambda);
-            fv[multipliers].get_function_gradients(solution, s.grad_lambda);
-          }
+        cell->get_dof_values(solution, local_solution);
+        cell->get_dof_values(history, local_history);
+        s.reinit(fv, fv_p, local_solution, local_history);
 
         // What the cell adds to: the border vectors of the free particles it meets.
         copy.rhs = 0;
@@ -213,17 +209,12 @@ namespace fdparticle
               (rule.kind == CellKind::cut && s.particle < 0 && rule.balls.size() > 1) ?
                 int(quadrature.nearest_surface(rule, particles, s.x)) :
                 rule.particle;
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                s.N[i] = fv.shape_value(i, q);
-                s.dN[i] = fv.shape_grad(i, q);
-              }
+            s.reinit_point(q);
             for (const AssemblyTerm<dim> *term : terms)
               term->assemble_point(s, copy);
           }
         if (with_matrix)
           {
-            s.reinit_cell_shapes(fv);
             for (const AssemblyTerm<dim> *term : terms)
               term->assemble_cell_matrix(s, copy);
           }
@@ -231,28 +222,36 @@ namespace fdparticle
         cell->get_dof_indices(dof_indices);
         if (fluid_mass)
           {
-            const auto first = dof_indices[pressure_local[0]] - first_pressure;
+            const auto first = dof_indices[s.pressure_dofs[0]] - first_pressure;
             Assert(first % n_p == 0, ExcInternalError());
             double *fluid_part = &blocks.pressure_fluid_mass[first * n_p];
             double *whole      = &blocks.pressure_mass[first * n_p];
             for (unsigned int q = 0; q < nq; ++q)
               for (unsigned int a = 0; a < n_p; ++a)
                 {
-                  Assert(dof_indices[pressure_local[a]] == dof_indices[pressure_local[0]] + a,
+                  Assert(dof_indices[s.pressure_dofs[a]] == dof_indices[s.pressure_dofs[0]] + a,
                          ExcInternalError());
                   for (unsigned int b = 0; b < n_p; ++b)
                     {
-                      const double m = fv.shape_value(pressure_local[a], q) *
-                                       fv.shape_value(pressure_local[b], q) * fv.JxW(q);
+                      const double m = s.pressure_values[q * n_p + a] *
+                                       s.pressure_values[q * n_p + b] * s.weights[q];
                       whole[a * n_p + b] += m;
                       if (rule.owner[q] < 0)
                         fluid_part[a * n_p + b] += m;
                     }
                 }
+            // The diagonal of the velocity mass matrix: Σ_q φ_s² JxW, the same for every
+            // component.
+            const CellShapes<dim> &V = s.velocity_shapes;
             local_velocity_mass = 0;
-            for (const unsigned int i : velocity_local)
-              for (unsigned int q = 0; q < nq; ++q)
-                local_velocity_mass[i] += fv.shape_value(i, q) * fv.shape_value(i, q) * fv.JxW(q);
+            for (unsigned int f = 0; f < V.n_functions(); ++f)
+              {
+                double m = 0;
+                for (unsigned int q = 0; q < nq; ++q)
+                  m += V.row(q)[V.column(0, f)] * V.row(q)[V.column(0, f)] * s.weights[q];
+                for (unsigned int comp = 0; comp < dim; ++comp)
+                  local_velocity_mass[V.dof(comp, f)] = m;
+              }
             constraints.distribute_local_to_global(local_velocity_mass, dof_indices,
                                                    blocks.velocity_mass);
           }

@@ -9,6 +9,8 @@
 // is at most quadratic in the unknowns, so central differences are exact up to round-off.
 // Two cells: one cut by the ball (fluid momentum, pairing, cut-cell penalties) and one
 // inside it (fluid momentum, interior pressure, pairing); both angular-velocity closures.
+// AssemblyScratch's iterate and shape functions, read from the scalar elements, are
+// compared with the FESystem's.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_values.h>
@@ -52,6 +54,10 @@ namespace
       : fe(Introspection<dim>::finite_element())
       , fv(mapping, fe, Introspection<dim>::cell_quadrature(),
            update_values | update_gradients | update_quadrature_points | update_JxW_values)
+      , scalar_fv(mapping, fe.base_element(0), Introspection<dim>::cell_quadrature(),
+                  update_values | update_gradients)
+      , pressure_fv(mapping, fe.base_element(fe.n_base_elements() - 1),
+                    Introspection<dim>::cell_quadrature(), update_values | update_gradients)
       , fluid_momentum(fluid)
       , interior_pressure(fluid)
       , pairing(fluid, particles)
@@ -82,6 +88,8 @@ namespace
 
       GridGenerator::hyper_cube(tria, 0, 1);
       fv.reinit(tria.begin_active());
+      scalar_fv.reinit(tria.begin_active());
+      pressure_fv.reinit(tria.begin_active());
       const unsigned int nq = fv.n_quadrature_points;
       owner.resize(nq);
       for (unsigned int q = 0; q < nq; ++q)
@@ -122,12 +130,12 @@ namespace
       s.particle_fraction = inside / total;
       // The iterate at the points, from the local coefficients (every shape function has
       // one field and one component).
-      s.u.assign(nq, Tensor<1, dim>());
-      s.lambda.assign(nq, Tensor<1, dim>());
-      s.grad_u.assign(nq, Tensor<2, dim>());
-      s.grad_lambda.assign(nq, Tensor<2, dim>());
-      s.p.assign(nq, 0.0);
-      s.u_history = history;
+      // AssemblyScratch evaluates from the scalar elements; here the FESystem's shape
+      // functions give the same values independently.
+      s.reinit(scalar_fv, pressure_fv, x, Vector<double>(n));
+      std::vector<Tensor<1, dim>> u(nq), lambda(nq);
+      std::vector<Tensor<2, dim>> grad_u(nq), grad_lambda(nq);
+      std::vector<double>         p(nq);
       for (unsigned int q = 0; q < nq; ++q)
         for (unsigned int i = 0; i < n; ++i)
           {
@@ -136,18 +144,24 @@ namespace
             switch (Introspection<dim>::field(c_i))
               {
                 case Introspection<dim>::Field::velocity:
-                  s.u[q][d] += x[i] * fv.shape_value(i, q);
-                  s.grad_u[q][d] += x[i] * fv.shape_grad(i, q);
+                  u[q][d] += x[i] * fv.shape_value(i, q);
+                  grad_u[q][d] += x[i] * fv.shape_grad(i, q);
                   break;
                 case Introspection<dim>::Field::multiplier:
-                  s.lambda[q][d] += x[i] * fv.shape_value(i, q);
-                  s.grad_lambda[q][d] += x[i] * fv.shape_grad(i, q);
+                  lambda[q][d] += x[i] * fv.shape_value(i, q);
+                  grad_lambda[q][d] += x[i] * fv.shape_grad(i, q);
                   break;
                 case Introspection<dim>::Field::pressure:
-                  s.p[q] += x[i] * fv.shape_value(i, q);
+                  p[q] += x[i] * fv.shape_value(i, q);
                   break;
               }
           }
+      for (unsigned int q = 0; q < nq; ++q)
+        evaluation_mismatch =
+          std::max({evaluation_mismatch, (s.u[q] - u[q]).norm(), (s.lambda[q] - lambda[q]).norm(),
+                    (s.grad_u[q] - grad_u[q]).norm(), (s.grad_lambda[q] - grad_lambda[q]).norm(),
+                    std::abs(s.p[q] - p[q]), s.u_history[q].norm()});
+      s.u_history = history;
       // The ball is free: its border vectors are assembled.
       if (with_matrix)
         {
@@ -166,17 +180,16 @@ namespace
           s.JxW = s.weights[q] = fv.JxW(q);
           s.x = fv.quadrature_point(q);
           s.particle = owner[q];
+          s.reinit_point(q);
           for (unsigned int i = 0; i < n; ++i)
-            {
-              s.N[i] = fv.shape_value(i, q);
-              s.dN[i] = fv.shape_grad(i, q);
-            }
+            evaluation_mismatch =
+              std::max({evaluation_mismatch, std::abs(s.N[i] - fv.shape_value(i, q)),
+                        (s.dN[i] - fv.shape_grad(i, q)).norm()});
           for (const auto *term : terms)
             term->assemble_point(s, copy);
         }
       if (with_matrix)
         {
-          s.reinit_cell_shapes(fv);
           for (const auto *term : terms)
             term->assemble_cell_matrix(s, copy);
         }
@@ -202,6 +215,11 @@ namespace
     MappingQ<dim>               mapping{1};
     Triangulation<dim>          tria;
     FEValues<dim>               fv;
+    /// The same points for the scalar elements of (u, λ) and of p (AssemblyScratch::reinit).
+    FEValues<dim>               scalar_fv, pressure_fv;
+    /// Largest difference between AssemblyScratch's iterate and shape functions at the
+    /// points and the FESystem's.
+    double                      evaluation_mismatch = 0;
     FluidMomentum<dim>          fluid_momentum;
     InteriorPressure<dim>       interior_pressure;
     MultiplierPairing<dim>      pairing;
@@ -242,6 +260,9 @@ namespace
                              " cell, " + closure + ": ";
     std::cout << name << std::count(cell.owner.begin(), cell.owner.end(), 0) << " of "
               << cell.owner.size() << " points in the ball" << std::endl;
+    // The coefficients are O(1): round-off of a few sums of products.
+    check(cell.evaluation_mismatch <= 1e-12, name + "iterate and shape functions from the scalar elements",
+          "largest difference " + std::to_string(cell.evaluation_mismatch));
 
     // The particle integrals entering the rows C: <λ, e_i>, <λ, e_j × r> or −½ ∫ curl u.
     const auto particle_rows = [&](const AssemblyCopy<dim> &copy) {

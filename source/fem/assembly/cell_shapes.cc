@@ -25,21 +25,36 @@ namespace fdparticle
   template <int dim>
   void CellShapes<dim>::reinit(const FEValues<dim> &fv)
   {
+    Assert(fv.get_fe().n_dofs_per_cell() == n_scalar,
+           ExcMessage("CellShapes::reinit takes the FEValues of the field's scalar element."));
     n_q = fv.n_quadrature_points;
     values.resize(n_q * n_columns());
-    // Component 0 stands for all: the components share the scalar functions.
     for (unsigned int q = 0; q < n_q; ++q)
       {
         double *r = &values[q * n_columns()];
         for (unsigned int s = 0; s < n_scalar; ++s)
           {
-            const unsigned int i = dofs[0][s];
-            r[column(0, s)] = fv.shape_value(i, q);
-            const Tensor<1, dim> grad = fv.shape_grad(i, q);
+            r[column(0, s)] = fv.shape_value(s, q);
+            const Tensor<1, dim> grad = fv.shape_grad(s, q);
             for (unsigned int d = 0; d < dim; ++d)
               r[column(1 + d, s)] = grad[d];
           }
       }
+  }
+
+  void add_gram(const unsigned int k, const unsigned int m, const double *X,
+                const unsigned int ldx, double *G)
+  {
+    if (k == 0 || m == 0)
+      return;
+    // Read column-major, X is the m × k matrix Xᵀ, and Xᵀ (Xᵀ)ᵀ is syrk('n'). It updates the
+    // column-major upper triangle, the row-major lower one; the other half is mirrored.
+    const types::blas_int bk = k, bm = m, bldx = ldx;
+    const double          one = 1.0;
+    syrk("U", "N", &bm, &bk, &one, X, &bldx, &one, G, &bm);
+    for (unsigned int r = 0; r < m; ++r)
+      for (unsigned int c = r + 1; c < m; ++c)
+        G[r * m + c] = G[c * m + r];
   }
 
   void add_transpose_product(const unsigned int k, const unsigned int m, const unsigned int n,

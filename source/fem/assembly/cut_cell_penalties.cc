@@ -1,6 +1,8 @@
 #include <fdparticle/core/parameter_tools.h>
 #include <fdparticle/fem/assembly/cut_cell_penalties.h>
 
+#include <cmath>
+
 namespace fdparticle
 {
   template <int dim>
@@ -93,38 +95,39 @@ namespace fdparticle
   {
     if (s.kind != CellKind::cut || !(fluid_penalty > 0 || strain_penalty > 0))
       return;
-    // Over the fluid points: G = Σ_q x(q) x_w(q)ᵀ with the features x = (ψ, ∂_0 ψ, …) and
-    // x_w the values weighted by the fluid weight, the derivatives by the strain weight.
+    // Over the fluid points: the mass matrix under the fluid weight and every
+    // ∂_d ψ_s ∂_e ψ_t under the strain weight, as Gram matrices of the rows scaled by the
+    // weights' roots.
     const CellShapes<dim> &L  = s.multiplier_shapes;
     const unsigned int     nf = L.n_functions(), nc = L.n_columns();
-    std::vector<double> &  shapes = copy.product, &weighted = copy.weighted;
-    shapes.clear();
+    std::vector<double> &  weighted = copy.weighted;
     weighted.clear();
     for (unsigned int q = 0; q < L.n_points(); ++q)
       if (s.owners[q] < 0)
         {
           const auto [fluid_weight, strain_weight] = weights(s, s.nearest_surfaces[q], s.weights[q]);
-          shapes.insert(shapes.end(), L.row(q), L.row(q) + nc);
+          const double root_fluid = std::sqrt(fluid_weight), root_strain = std::sqrt(strain_weight);
           for (unsigned int k = 0; k < nc; ++k)
-            weighted.push_back((k < nf ? fluid_weight : strain_weight) * L.row(q)[k]);
+            weighted.push_back((k < nf ? root_fluid : root_strain) * L.row(q)[k]);
         }
-    std::vector<double> gram(nc * nc, 0.0);
-    add_transpose_product(shapes.size() / nc, nc, nc, 1.0, shapes.data(), nc, weighted.data(), nc,
-                          gram.data(), nc);
-    const auto G = [&](const unsigned int f, const unsigned int a, const unsigned int g,
-                       const unsigned int b) { return gram[L.column(f, a) * nc + L.column(g, b)]; };
+    const unsigned int  n_fluid = weighted.size() / nc;
+    std::vector<double> mass(nf * nf, 0.0), derivatives(dim * nf * dim * nf, 0.0);
+    add_gram(n_fluid, nf, weighted.data(), nc, mass.data());
+    add_gram(n_fluid, dim * nf, weighted.data() + L.column(1, 0), nc, derivatives.data());
+    const auto D = [&](const unsigned int d, const unsigned int a, const unsigned int e,
+                       const unsigned int b) { return derivatives[(d * nf + a) * dim * nf + e * nf + b]; };
     // s μ α²/(α + μ/R²) δ ψ_a ψ_b + s_e μ (δ ∇ψ_a·∇ψ_b + ∂_cb ψ_a ∂_ca ψ_b)
     for (unsigned int ca = 0; ca < dim; ++ca)
       for (unsigned int cb = 0; cb < dim; ++cb)
         for (unsigned int a = 0; a < nf; ++a)
           for (unsigned int b = 0; b < nf; ++b)
             {
-              double value = G(1 + cb, a, 1 + ca, b);
+              double value = D(cb, a, ca, b);
               if (ca == cb)
                 {
-                  value += G(0, a, 0, b);
+                  value += mass[a * nf + b];
                   for (unsigned int d = 0; d < dim; ++d)
-                    value += G(1 + d, a, 1 + d, b);
+                    value += D(d, a, d, b);
                 }
               copy.matrix(L.dof(ca, a), L.dof(cb, b)) += value;
             }

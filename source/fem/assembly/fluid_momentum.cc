@@ -1,5 +1,7 @@
 #include <fdparticle/fem/assembly/fluid_momentum.h>
 
+#include <cmath>
+
 namespace fdparticle
 {
   template <int dim>
@@ -37,17 +39,21 @@ namespace fdparticle
     const CellShapes<dim> &V  = s.velocity_shapes;
     const unsigned int     nq = V.n_points(), nf = V.n_functions(), nc = V.n_columns();
 
-    // G = Σ_q JxW x(q) x(q)ᵀ over the features x = (φ, ∂_0 φ, …): the mass matrix and every
-    // ∫ ∂_a φ_s ∂_b φ_t.
+    // The mass matrix Σ_q JxW φ_s φ_t and every Σ_q JxW ∂_d φ_s ∂_e φ_t, as Gram matrices
+    // of the rows scaled by √JxW.
     std::vector<double> &weighted = copy.weighted;
     weighted.resize(nq * nc);
     for (unsigned int q = 0; q < nq; ++q)
-      for (unsigned int k = 0; k < nc; ++k)
-        weighted[q * nc + k] = s.weights[q] * V.row(q)[k];
-    std::vector<double> gram(nc * nc, 0.0);
-    add_transpose_product(nq, nc, nc, 1.0, V.data(), nc, weighted.data(), nc, gram.data(), nc);
-    const auto G = [&](const unsigned int f, const unsigned int a, const unsigned int g,
-                       const unsigned int b) { return gram[V.column(f, a) * nc + V.column(g, b)]; };
+      {
+        const double root = std::sqrt(s.weights[q]);
+        for (unsigned int k = 0; k < nc; ++k)
+          weighted[q * nc + k] = root * V.row(q)[k];
+      }
+    std::vector<double> mass(nf * nf, 0.0), derivatives(dim * nf * dim * nf, 0.0);
+    add_gram(nq, nf, weighted.data(), nc, mass.data());
+    add_gram(nq, dim * nf, weighted.data() + V.column(1, 0), nc, derivatives.data());
+    const auto D = [&](const unsigned int d, const unsigned int a, const unsigned int e,
+                       const unsigned int b) { return derivatives[(d * nf + a) * dim * nf + e * nf + b]; };
 
     // Convection, Σ_q JxW φ_s [(u·∇)φ_t, ∂_b u_a φ_t]: column block 0 and 1 + a·dim + b.
     const unsigned int   n_blocks = 1 + dim * dim;
@@ -81,12 +87,12 @@ namespace fdparticle
         for (unsigned int a = 0; a < nf; ++a)
           for (unsigned int b = 0; b < nf; ++b)
             {
-              double value = mu * G(1 + cj, a, 1 + ci, b);
+              double value = mu * D(cj, a, ci, b);
               if (ci == cj)
                 {
-                  value += rho * c0 * G(0, a, 0, b);
+                  value += rho * c0 * mass[a * nf + b];
                   for (unsigned int d = 0; d < dim; ++d)
-                    value += mu * G(1 + d, a, 1 + d, b);
+                    value += mu * D(d, a, d, b);
                   if (fluid.convection)
                     value += rho * convection[a * n_blocks * nf + b];
                 }

@@ -2,6 +2,7 @@
 #include <fdparticle/particles/rigid_body.h>
 
 #include <array>
+#include <cmath>
 
 namespace fdparticle
 {
@@ -91,23 +92,24 @@ namespace fdparticle
     if (!s.has_particle)
       return;
     // The pairing between λ and u, antisymmetric in sign, over the points inside particles:
-    // Σ_q JxW (α ψ_s φ_t + μ ∇ψ_s·∇φ_t), one product over the (point, feature) pairs.
+    // Σ_q JxW (α ψ_s φ_t + μ ∇ψ_s·∇φ_t). λ and u share their scalar functions (ψ = φ), so it
+    // is the Gram matrix of the rows (√(α JxW) φ, √(μ JxW) ∂_0 φ, …), each feature a row of
+    // its own (a row of CellShapes read as dim + 1 rows of n_functions).
     const CellShapes<dim> &L = s.multiplier_shapes, &V = s.velocity_shapes;
     const unsigned int     nf = V.n_functions(), nc = V.n_columns();
     Assert(L.n_functions() == nf, ExcInternalError());
-    std::vector<double> &shapes = copy.product, &weighted = copy.weighted;
-    shapes.clear();
+    const double         root_alpha = std::sqrt(s.alpha), root_mu = std::sqrt(fluid.viscosity);
+    std::vector<double> &weighted = copy.weighted;
     weighted.clear();
     for (unsigned int q = 0; q < V.n_points(); ++q)
       if (s.owners[q] >= 0)
         {
-          shapes.insert(shapes.end(), L.row(q), L.row(q) + nc);
+          const double root = std::sqrt(s.weights[q]);
           for (unsigned int k = 0; k < nc; ++k)
-            weighted.push_back((k < nf ? s.alpha : fluid.viscosity) * s.weights[q] * V.row(q)[k]);
+            weighted.push_back((k < nf ? root_alpha : root_mu) * root * V.row(q)[k]);
         }
     std::vector<double> pairing(nf * nf, 0.0);
-    add_transpose_product(shapes.size() / nf, nf, nf, 1.0, shapes.data(), nf, weighted.data(), nf,
-                          pairing.data(), nf);
+    add_gram(weighted.size() / nf, nf, weighted.data(), nf, pairing.data());
     for (unsigned int c = 0; c < dim; ++c)
       for (unsigned int a = 0; a < nf; ++a)
         for (unsigned int b = 0; b < nf; ++b)

@@ -29,55 +29,26 @@ namespace fdparticle
   struct AssemblyScratch
   {
     AssemblyScratch(const FESystem<dim> &fe, const std::array<double, 3> &c, const double alpha,
-                    const bool with_matrix)
-      : c(c)
-      , alpha(alpha)
-      , with_matrix(with_matrix)
-      , component(fe.n_dofs_per_cell())
-      , velocity_shapes(fe, Introspection<dim>::Field::velocity)
-      , multiplier_shapes(fe, Introspection<dim>::Field::multiplier)
-      , N(fe.n_dofs_per_cell())
-      , dN(fe.n_dofs_per_cell())
-    {
-      // Every shape function is primitive: one field, one vector component.
-      for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-        {
-          const unsigned int c_i = fe.system_to_component_index(i).first;
-          component[i] = c_i % dim;
-          switch (Introspection<dim>::field(c_i))
-            {
-              case Introspection<dim>::Field::velocity:
-                velocity_dofs.push_back(i);
-                break;
-              case Introspection<dim>::Field::multiplier:
-                multiplier_dofs.push_back(i);
-                break;
-              case Introspection<dim>::Field::pressure:
-                pressure_dofs.push_back(i);
-                break;
-            }
-        }
-    }
+                    const bool with_matrix);
 
-    /// Read the shape functions at all points of the cell of fv, for the cell products.
-    void reinit_cell_shapes(const FEValues<dim> &fv)
-    {
-      velocity_shapes.reinit(fv);
-      multiplier_shapes.reinit(fv);
-      const unsigned int n_q = fv.n_quadrature_points, n_p = pressure_dofs.size();
-      pressure_values.resize(n_q * n_p);
-      for (unsigned int q = 0; q < n_q; ++q)
-        for (unsigned int j = 0; j < n_p; ++j)
-          pressure_values[q * n_p + j] = fv.shape_value(pressure_dofs[j], q);
-    }
+    /// The cell: read the shape functions at all its points from the FEValues of the
+    /// scalar element of u and λ (one FE_Q serves both) and of the pressure's, and
+    /// evaluate the iterate there from the cell's coefficients of the solution and of the
+    /// history. A FEValues of the scalar elements costs a fraction of the FESystem's, which
+    /// matters where a level-set rule is made for one cut cell (doc/method.md §7).
+    void reinit(const FEValues<dim> &scalar, const FEValues<dim> &pressure,
+                const Vector<double> &solution, const Vector<double> &history);
+    /// The point q of the cell: its shape functions into N and dN.
+    void reinit_point(const unsigned int q);
 
     // The step.
     std::array<double, 3> c;           ///< BDF weights: ∂_t u ≈ c0 u + c1 u^n + c2 u^{n−1}
     double                alpha;       ///< α of the pairing <λ, v> (doc/method.md §0)
     bool                  with_matrix; ///< assemble the Jacobian as well as the residual
 
-    // The local DoFs by field, and the vector component (0..dim−1) of each.
-    std::vector<unsigned int> component;
+    // The local DoFs by field, the vector component (0..dim−1) of each, and the index of
+    // its function in the field's scalar element.
+    std::vector<unsigned int> component, scalar_function;
     std::vector<unsigned int> velocity_dofs, multiplier_dofs, pressure_dofs;
 
     // The cell.
@@ -85,7 +56,7 @@ namespace fdparticle
     int                     cut_particle = -1; ///< the ball whose surface is nearest to the point (cut cells)
     double                  particle_fraction = 0; ///< of a cut cell: its weights inside
     bool                    has_particle = false;  ///< some point of the cell is in a particle
-    // The iterate at the cell's points (λ only where a particle or a cut needs it).
+    // The iterate at the cell's points.
     std::vector<Tensor<1, dim>> u, u_history, lambda;
     std::vector<Tensor<2, dim>> grad_u, grad_lambda;
     std::vector<double>         p;
@@ -93,10 +64,11 @@ namespace fdparticle
     // of a cut cell, the ball whose surface is nearest.
     std::vector<double> weights;
     std::vector<int>    owners, nearest_surfaces;
-    // The shape functions at every point of the cell (only with_matrix): u and λ as
-    // CellShapes, the pressure's as a row-major n_points × pressure_dofs matrix.
-    CellShapes<dim>     velocity_shapes, multiplier_shapes;
-    std::vector<double> pressure_values;
+    // The shape functions at every point of the cell: u and λ as CellShapes, the
+    // pressure's as row-major n_points × pressure_dofs matrices.
+    CellShapes<dim>             velocity_shapes, multiplier_shapes;
+    std::vector<double>         pressure_values;
+    std::vector<Tensor<1, dim>> pressure_gradients;
 
     // The point.
     unsigned int                q = 0;

@@ -28,7 +28,8 @@ namespace fdparticle
   public:
     CellShapes(const FESystem<dim> &fe, const typename Introspection<dim>::Field field);
 
-    /// Read the field's scalar shape functions at the points of fv.
+    /// Read the scalar shape functions at the points of fv, a FEValues of the field's
+    /// scalar element (not of the FESystem).
     void reinit(const FEValues<dim> &fv);
 
     unsigned int n_points() const { return n_q; }
@@ -53,6 +54,14 @@ namespace fdparticle
    * C += a Xᵀ Y for row-major X (k × m, leading dimension ldx), Y (k × n, ldy) and C (m × n,
    * ldc), by BLAS: the contraction over quadrature points behind the cell products.
    */
+  /**
+   * G += Xᵀ X for row-major X (k × m, leading dimension ldx) and G (m × m): the Gram matrix
+   * of the columns of X, symmetric, by BLAS's rank-k update (half the work of a product).
+   * Rows scaled by √w give Σ_q w_q x(q) x(q)ᵀ, for weights w ≥ 0.
+   */
+  void add_gram(const unsigned int k, const unsigned int m, const double *X,
+                const unsigned int ldx, double *G);
+
   void add_transpose_product(const unsigned int k, const unsigned int m, const unsigned int n,
                              const double a, const double *X, const unsigned int ldx,
                              const double *Y, const unsigned int ldy, double *C,
