@@ -77,8 +77,8 @@ namespace fdparticle
                         "Points of the 1D Gauss rule the level-set rules are built from "
                         "(1 to 12; error ~ h^(2n) for smooth surfaces: 6 integrates a ball's "
                         "volume and second moments to 3e-8 relative at R/h = 2.4). In 3D the "
-                        "points are the assembly's cost: a run of 8 spheres took 0.55 times as "
-                        "long with 4 as with 6 and its velocities moved by 7e-5 relative "
+                        "points are the assembly's cost: a run of 8 spheres took 0.88 times as "
+                        "long with 4 as with 6 and its velocities moved by 1.4e-4 relative "
                         "(doc/method.md §7).");
       prm.declare_entry("Cut cell cost", "4", Patterns::Double(1, 1000),
                         "The work of a cut cell relative to a regular one, for the partition "
