@@ -166,8 +166,10 @@ namespace fdparticle
         FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
         FEValues<dim> &fv_p =
           fe_values_for<dim>(rule, pressure_regular, pressure_cut, pressure_cell_specific);
-        fv.reinit(cell);
-        fv_p.reinit(cell);
+        // As cells of the mesh: the scalar elements are not the DoFHandler's.
+        const typename Triangulation<dim>::cell_iterator mesh_cell(cell);
+        fv.reinit(mesh_cell);
+        fv_p.reinit(mesh_cell);
         quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
 
         // The cell: its kind, its shape functions and the iterate at its points.
