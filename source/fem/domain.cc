@@ -216,7 +216,7 @@ namespace fdparticle
             const double gap = (side < 0 ? x[d] - lower[d] : upper[d] - x[d]) - r;
             if (gap < reach)
               {
-                WallGap wall{gap, Tensor<1, dim>()};
+                WallGap wall{gap, Tensor<1, dim>(), wall_velocities[2 * d + (side > 0)]};
                 wall.normal[d] = -side; // away from the wall, into the box
                 result.push_back(wall);
               }

@@ -126,29 +126,11 @@ namespace fdparticle
   }
 
   template <int dim>
-  double Collisions<dim>::contact_time(const double effective_mass, const double stiffness) const
+  SpringDashpotLaw Collisions<dim>::spring_dashpot(const unsigned int i, const unsigned int j,
+                                                   const ParticleSet<dim> &particles) const
   {
-    const double log_e = std::log(restitution);
-    return std::sqrt(effective_mass / stiffness) * std::sqrt(numbers::PI * numbers::PI + log_e * log_e);
-  }
-
-  template <int dim>
-  NormalLawValue Collisions<dim>::spring_dashpot(const unsigned int i, const unsigned int j,
-                                                 const ParticleSet<dim> &particles,
-                                                 const double gap,
-                                                 const double normal_velocity) const
-  {
-    const double k      = spring_stiffness(i, j);
-    const double log_e  = std::log(restitution);
-    const double zeta   = -log_e / std::sqrt(numbers::PI * numbers::PI + log_e * log_e);
-    const double gamma  = 2 * zeta * std::sqrt(effective_mass(i, j, particles) * k);
-    // The spring is compressed by δ = ρ − g. The linear model acts for the whole
-    // compression, including the short pull of the dashpot as the balls separate: the
-    // restitution formula assumes it (cutting the force at 0 instead returns more energy:
-    // 0.40 for e = 0.3).
-    if (gap >= range)
-      return NormalLawValue{};
-    return NormalLawValue{k * (range - gap) - gamma * normal_velocity, -k, -gamma};
+    return SpringDashpotLaw(range, spring_stiffness(i, j), restitution,
+                            effective_mass(i, j, particles));
   }
 
   template <int dim>
@@ -159,7 +141,8 @@ namespace fdparticle
     // The shortest contact: each ball against a copy of itself.
     double shortest = std::numeric_limits<double>::max();
     for (unsigned int k = 0; k < weight.size(); ++k)
-      shortest = std::min(shortest, contact_time(mass[k] / 2, spring_stiffness(k, k)));
+      shortest = std::min(shortest, SpringDashpotLaw::contact_time(
+                                      mass[k] / 2, spring_stiffness(k, k), restitution));
     std::ostringstream out;
     out << "Collisions: spring-dashpot contacts last t_c = " << std::setprecision(3) << shortest
         << " (" << shortest / dt << " time steps; the implicit time integration takes "
@@ -206,28 +189,22 @@ namespace fdparticle
       {
         const auto contact =
           NormalContact<dim>::pair(particles, pair.i, pair.j, pair.offset, pair.gap);
-        NormalLawValue f;
         if (contact_model == Model::repulsion)
           {
             const RepulsionLaw F = law(pair.i, pair.j);
-            f = NormalLawValue{F.force(pair.gap), F.derivative(pair.gap), 0.0};
-          }
-        else
-          f = spring_dashpot(pair.i, pair.j, particles, pair.gap, contact.normal_velocity());
-        contact.add(particles, f, c, r_p, D);
-        if (friction > 0)
-          {
-            const ContactFriction<dim> coulomb(
-              friction, slip_velocity_fraction * range /
-                contact_time(effective_mass(pair.i, pair.j, particles),
-                             spring_stiffness(pair.i, pair.j)));
-            coulomb.add(particles, pair.i, pair.j, pair.offset - (x[pair.i] - x[pair.j]),
-                        [&](const double gap, const double normal_velocity) {
-                          return spring_dashpot(pair.i, pair.j, particles, gap, normal_velocity)
-                            .force;
-                        },
+            contact.add(particles, NormalLawValue{F.force(pair.gap), F.derivative(pair.gap), 0.0},
                         c, r_p, D);
+            continue;
           }
+        const SpringDashpotLaw spring = spring_dashpot(pair.i, pair.j, particles);
+        contact.add(particles, spring.value(pair.gap, contact.normal_velocity()), c, r_p, D);
+        if (friction > 0)
+          ContactFriction<dim>(friction, spring)
+            .add_pair(particles, pair.i, pair.j, pair.offset - (x[pair.i] - x[pair.j]),
+                      [&](const double gap, const double normal_velocity) {
+                        return spring.value(gap, normal_velocity).force;
+                      },
+                      c, r_p, D);
       }
   }
 

@@ -2,13 +2,14 @@
 #include <fdparticle/particles/rigid_body.h>
 
 #include <cmath>
+#include <vector>
 
 namespace fdparticle
 {
   template <int dim>
-  ContactFriction<dim>::ContactFriction(const double coefficient, const double slip_velocity)
+  ContactFriction<dim>::ContactFriction(const double coefficient, const SpringDashpotLaw &spring)
     : coefficient(coefficient)
-    , slip_velocity(slip_velocity)
+    , slip_velocity(slip_velocity_fraction * spring.range / spring.duration)
   {
     Assert(slip_velocity > 0, ExcMessage("The slip velocity must be positive."));
   }
@@ -28,55 +29,101 @@ namespace fdparticle
 
   template <int dim>
   typename ContactFriction<dim>::PairVector
-  ContactFriction<dim>::rows(const Particle<dim> &P_i, const Particle<dim> &P_j,
-                             const Tensor<1, dim> &shift, const NormalForce &normal_force,
+  ContactFriction<dim>::rows(const ParticleSet<dim> &particles, const unsigned int i,
+                             const Partner &partner, const NormalForce &normal_force,
                              const std::array<double, 3> &c, const PairVector &u) const
   {
-    Particle<dim> A = P_i, B = P_j;
+    const bool    is_pair = (partner.j != numbers::invalid_unsigned_int);
+    Particle<dim> A = particles[i];
     set_motion(A, u, 0);
-    set_motion(B, u, n_unknowns);
-    const Tensor<1, dim> offset = A.position_after_step(c) - B.position_after_step(c) + shift;
-    const double         distance = offset.norm();
-    const Tensor<1, dim> n = offset / distance;
-    const double         gap = distance - A.radius - B.radius;
-    const Tensor<1, dim> relative = A.velocity - B.velocity;
-    const double         F_n = std::max(normal_force(gap, relative * n), 0.0);
-    // The contact point is the middle of the gap: −(R_i + g/2) n from X_i, (R_j + g/2) n
-    // from X_j. One point for both balls, so the pair's angular momentum is conserved.
-    const Tensor<1, dim> arm_i = -(A.radius + gap / 2) * n, arm_j = (B.radius + gap / 2) * n;
-    const Tensor<1, dim> sliding =
-      relative + RigidBody<dim>::cross(A.omega, arm_i) - RigidBody<dim>::cross(B.omega, arm_j);
+    const Point<dim> X_A = A.position_after_step(c);
+    Tensor<1, dim>   n, sliding;
+    double           gap;
+    if (is_pair)
+      {
+        Particle<dim> B = particles[partner.j];
+        set_motion(B, u, n_unknowns);
+        const Tensor<1, dim> offset   = X_A - B.position_after_step(c) + partner.shift;
+        const double         distance = offset.norm();
+        n   = offset / distance;
+        gap = distance - A.radius - B.radius;
+        // The contact point is the middle of the gap: (R_j + g/2) n from X_j.
+        sliding = -B.velocity - RigidBody<dim>::cross(B.omega, (B.radius + gap / 2) * n);
+      }
+    else
+      {
+        n       = partner.normal;
+        gap     = n * X_A - partner.plane - A.radius;
+        sliding = -partner.wall_velocity;
+      }
+    // The contact point is the middle of the gap: −(R_i + g/2) n from X_i. One point for
+    // both balls, so a pair's angular momentum is conserved.
+    const Tensor<1, dim> arm_i = -(A.radius + gap / 2) * n;
+    const double F_n = std::max(normal_force(gap, (A.velocity + sliding) * n), 0.0);
+    sliding += A.velocity + RigidBody<dim>::cross(A.omega, arm_i);
     const Tensor<1, dim> v_t = sliding - (sliding * n) * n;
     const Tensor<1, dim> F = -coefficient * F_n / std::sqrt(v_t.norm_square() +
                                                             slip_velocity * slip_velocity) * v_t;
-    const Tensor<1, 3>   T_i = RigidBody<dim>::moment(arm_i, F);
-    const Tensor<1, 3>   T_j = RigidBody<dim>::moment(arm_j, -F);
-    PairVector result;
+    PairVector result = PairVector::Zero();
+    const Tensor<1, 3> T_i = RigidBody<dim>::moment(arm_i, F);
     for (unsigned int d = 0; d < dim; ++d)
-      {
-        result[d]              = F[d];
-        result[n_unknowns + d] = -F[d];
-      }
+      result[d] = F[d];
     for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)
+      result[dim + r] = T_i[RigidBody<dim>::rotation_component(r)];
+    if (is_pair)
       {
-        result[dim + r]              = T_i[RigidBody<dim>::rotation_component(r)];
-        result[n_unknowns + dim + r] = T_j[RigidBody<dim>::rotation_component(r)];
+        const Tensor<1, 3> T_j =
+          RigidBody<dim>::moment((particles[partner.j].radius + gap / 2) * n, -F);
+        for (unsigned int d = 0; d < dim; ++d)
+          result[n_unknowns + d] = -F[d];
+        for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)
+          result[n_unknowns + dim + r] = T_j[RigidBody<dim>::rotation_component(r)];
       }
     return result;
   }
 
   template <int dim>
+  void ContactFriction<dim>::add_pair(ParticleSet<dim> &particles, const unsigned int i,
+                                      const unsigned int j, const Tensor<1, dim> &shift,
+                                      const NormalForce &normal_force,
+                                      const std::array<double, 3> &c, Eigen::VectorXd &r_p,
+                                      Eigen::SparseMatrix<double> *D) const
+  {
+    Partner partner;
+    partner.j     = j;
+    partner.shift = shift;
+    add(particles, i, partner, normal_force, c, r_p, D);
+  }
+
+  template <int dim>
+  void ContactFriction<dim>::add_wall(ParticleSet<dim> &particles, const unsigned int i,
+                                      const typename Domain<dim>::WallGap &wall,
+                                      const NormalForce &normal_force,
+                                      const std::array<double, 3> &c, Eigen::VectorXd &r_p,
+                                      Eigen::SparseMatrix<double> *D) const
+  {
+    Partner partner;
+    partner.normal        = wall.normal;
+    partner.wall_velocity = wall.velocity;
+    partner.plane =
+      wall.normal * particles[i].position_after_step(c) - particles[i].radius - wall.gap;
+    add(particles, i, partner, normal_force, c, r_p, D);
+  }
+
+  template <int dim>
   void ContactFriction<dim>::add(ParticleSet<dim> &particles, const unsigned int i,
-                                 const unsigned int j, const Tensor<1, dim> &shift,
-                                 const NormalForce &normal_force,
+                                 const Partner &partner, const NormalForce &normal_force,
                                  const std::array<double, 3> &c, Eigen::VectorXd &r_p,
                                  Eigen::SparseMatrix<double> *D) const
   {
     if (coefficient == 0)
       return;
-    const std::array<unsigned int, 2>        ball{{i, j}};
-    PairVector                        u;
-    for (unsigned int s = 0; s < 2; ++s)
+    // The balls of the contact: i, and j unless the partner is a wall.
+    std::vector<unsigned int> ball{i};
+    if (partner.j != numbers::invalid_unsigned_int)
+      ball.push_back(partner.j);
+    PairVector u = PairVector::Zero();
+    for (unsigned int s = 0; s < ball.size(); ++s)
       {
         const Particle<dim> &P = particles[ball[s]];
         for (unsigned int d = 0; d < dim; ++d)
@@ -84,8 +131,8 @@ namespace fdparticle
         for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)
           u[s * n_unknowns + dim + r] = P.omega[RigidBody<dim>::rotation_component(r)];
       }
-    const auto value = rows(particles[i], particles[j], shift, normal_force, c, u);
-    for (unsigned int s = 0; s < 2; ++s)
+    const auto value = rows(particles, i, partner, normal_force, c, u);
+    for (unsigned int s = 0; s < ball.size(); ++s)
       {
         Particle<dim> &P = particles[ball[s]];
         for (unsigned int d = 0; d < dim; ++d)
@@ -97,7 +144,8 @@ namespace fdparticle
       }
     if (D == nullptr)
       return;
-    for (unsigned int t = 0; t < 2; ++t)
+    const double step = difference_step * slip_velocity;
+    for (unsigned int t = 0; t < ball.size(); ++t)
       {
         const unsigned int column = particles[ball[t]].first_unknown;
         if (column == numbers::invalid_unsigned_int)
@@ -105,14 +153,13 @@ namespace fdparticle
         for (unsigned int k = 0; k < n_unknowns; ++k)
           {
             const unsigned int entry = t * n_unknowns + k;
-            const double step = difference_step * slip_velocity;
-            auto         plus = u, minus = u;
+            auto               plus = u, minus = u;
             plus[entry] += step;
             minus[entry] -= step;
-            const PairVector derivative = (rows(particles[i], particles[j], shift, normal_force, c, plus) -
-                                     rows(particles[i], particles[j], shift, normal_force, c, minus)) /
-                                    (2 * step);
-            for (unsigned int s = 0; s < 2; ++s)
+            const PairVector derivative = (rows(particles, i, partner, normal_force, c, plus) -
+                                           rows(particles, i, partner, normal_force, c, minus)) /
+                                          (2 * step);
+            for (unsigned int s = 0; s < ball.size(); ++s)
               {
                 const unsigned int row = particles[ball[s]].first_unknown;
                 if (row != numbers::invalid_unsigned_int)

@@ -1,5 +1,10 @@
 #include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/contact_friction.h>
 #include <fdparticle/particles/wall_repulsion.h>
+
+#include <iomanip>
+#include <limits>
+#include <sstream>
 
 namespace fdparticle
 {
@@ -19,6 +24,27 @@ namespace fdparticle
                         "Force at contact (gap 0), or 'auto': 100 times each ball's apparent "
                         "weight |rho_P - rho_f| |P| |g|, so a ball rests at 0.9 Range off the "
                         "floor. With no gravity 'auto' gives no force: give a number.");
+      prm.declare_entry("Model", "repulsion", Patterns::Selection("repulsion|spring-dashpot"),
+                        "The law of the force. repulsion: Glowinski et al.'s force, growing "
+                        "quadratically as the gap closes below Range; a ball comes to rest "
+                        "above the wall. spring-dashpot: a spring and a dashpot compressed as "
+                        "the gap closes below Range, which bounce a ball off the wall with the "
+                        "Restitution coefficient, and optional friction.");
+      prm.declare_entry("Spring stiffness", "auto", Patterns::Anything(),
+                        "spring-dashpot: normal force per unit compression Range - gap (in 2D "
+                        "per unit length too), or 'auto': Stiffness / Range, so a ball resting "
+                        "on a wall compresses the spring by 1 % of Range.");
+      prm.declare_entry("Restitution coefficient", "0.9", Patterns::Double(0, 1),
+                        "spring-dashpot: ratio of a dry ball's normal velocity after and "
+                        "before it hits a wall; the dashpot dissipates the rest. The fluid's "
+                        "own damping comes on top. Resolve the contact duration printed at the "
+                        "start with about 10 time steps to get it.");
+      prm.declare_entry("Friction coefficient", "0", Patterns::Double(0),
+                        "spring-dashpot: Coulomb friction coefficient between a ball and a "
+                        "wall (tangential force at most this times the normal force, against "
+                        "the sliding of the ball's surface on the wall, with a torque): a ball "
+                        "thrown along a wall starts rolling. 0: frictionless. Needs "
+                        "Particles/Angular velocity closure = torque balance.");
     }
     prm.leave_subsection();
   }
@@ -32,6 +58,19 @@ namespace fdparticle
     range_entry = get_auto_or_number(prm, "Range", "Wall repulsion/Range", Zero::refused);
     stiffness_entry =
       get_auto_or_number(prm, "Stiffness", "Wall repulsion/Stiffness", Zero::allowed);
+    spring_dashpot = (prm.get("Model") == "spring-dashpot");
+    spring_entry   = get_auto_or_number(prm, "Spring stiffness", "Wall repulsion/Spring stiffness",
+                                      Zero::refused);
+    restitution = prm.get_double("Restitution coefficient");
+    friction    = prm.get_double("Friction coefficient");
+    AssertThrow(friction == 0 || spring_dashpot,
+                ExcMessage("Wall repulsion/Friction coefficient acts in the spring-dashpot "
+                           "model only: set Wall repulsion/Model = spring-dashpot, or the "
+                           "coefficient to 0."));
+    AssertThrow(restitution > 0 || !spring_dashpot,
+                ExcMessage("Wall repulsion/Restitution coefficient must be above 0: a "
+                           "perfectly plastic contact needs infinite damping. Give a small "
+                           "value such as 0.01 instead."));
     prm.leave_subsection();
   }
 
@@ -43,10 +82,51 @@ namespace fdparticle
     this->domain = domain;
     rho = range_entry.value_or(finest_cell_size);
     stiffness.resize(particles.size());
+    mass.resize(particles.size());
     for (unsigned int k = 0; k < particles.size(); ++k)
-      stiffness[k] = stiffness_entry.value_or(RepulsionLaw::stiffness_per_weight *
-                                              std::abs(particles[k].density - fluid.density) *
-                                              particles[k].volume() * fluid.gravity.norm());
+      {
+        stiffness[k] = stiffness_entry.value_or(RepulsionLaw::stiffness_per_weight *
+                                                std::abs(particles[k].density - fluid.density) *
+                                                particles[k].volume() * fluid.gravity.norm());
+        mass[k] = particles[k].density * particles[k].volume();
+      }
+    AssertThrow(!on || friction == 0 ||
+                  particles.closure() == AngularVelocityClosure::torque_balance,
+                ExcMessage("Wall repulsion/Friction coefficient exerts a torque, which the "
+                           "kinematic angular-velocity closure has no equation for: use the "
+                           "torque balance closure, or no friction."));
+    if (on && spring_dashpot && !spring_entry)
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        AssertThrow(stiffness[k] > 0 || particles[k].first_unknown == numbers::invalid_unsigned_int,
+                    ExcMessage("Wall repulsion/Model = spring-dashpot needs a spring, and "
+                               "particle " + std::to_string(k + 1) + " has none: its Stiffness "
+                               "is 0, or 'auto' with no apparent weight (no gravity, or the "
+                               "fluid's density). Give the force at contact or the Spring "
+                               "stiffness as a number."));
+  }
+
+  template <int dim>
+  SpringDashpotLaw WallRepulsion<dim>::spring(const unsigned int k) const
+  {
+    // The wall does not move by any force: the ball's own mass is the effective mass.
+    return SpringDashpotLaw(rho, spring_entry.value_or(stiffness[k] / rho), restitution, mass[k]);
+  }
+
+  template <int dim>
+  std::string WallRepulsion<dim>::describe(const double dt) const
+  {
+    if (!on || !spring_dashpot || mass.empty())
+      return "";
+    double shortest = std::numeric_limits<double>::max();
+    for (unsigned int k = 0; k < mass.size(); ++k)
+      if (spring(k).stiffness > 0)
+        shortest = std::min(shortest, spring(k).duration);
+    if (shortest == std::numeric_limits<double>::max())
+      return "";
+    std::ostringstream out;
+    out << "Wall repulsion: spring-dashpot contacts last t_c = " << std::setprecision(3)
+        << shortest << " (" << shortest / dt << " time steps)";
+    return out.str();
   }
 
   template <int dim>
@@ -63,9 +143,25 @@ namespace fdparticle
           continue;
         const RepulsionLaw law{rho, stiffness[k]};
         for (const auto &wall : domain.walls_near(P.position_after_step(c), P.radius, rho))
-          NormalContact<dim>::wall(particles, k, wall.normal, wall.gap)
-            .add(particles, NormalLawValue{law.force(wall.gap), law.derivative(wall.gap), 0.0},
-                 c, r_p, D);
+          {
+            const auto contact = NormalContact<dim>::wall(particles, k, wall.normal, wall.gap);
+            if (!spring_dashpot)
+              {
+                contact.add(particles,
+                            NormalLawValue{law.force(wall.gap), law.derivative(wall.gap), 0.0},
+                            c, r_p, D);
+                continue;
+              }
+            const SpringDashpotLaw spring_k = spring(k);
+            contact.add(particles, spring_k.value(wall.gap, contact.normal_velocity()), c, r_p, D);
+            if (friction > 0)
+              ContactFriction<dim>(friction, spring_k)
+                .add_wall(particles, k, wall,
+                          [&](const double gap, const double normal_velocity) {
+                            return spring_k.value(gap, normal_velocity).force;
+                          },
+                          c, r_p, D);
+          }
       }
   }
 

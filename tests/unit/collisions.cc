@@ -16,6 +16,7 @@
 #include <fdparticle/particles/lubrication.h>
 #include <fdparticle/particles/pair_search.h>
 #include <fdparticle/particles/particle_set.h>
+#include <fdparticle/particles/wall_repulsion.h>
 
 #include "unit_check.h"
 
@@ -45,7 +46,8 @@ namespace
   void parse(ParameterHandler &prm, const std::string &periodic, const std::string &particles,
              Domain<dim> &domain, Fluid<dim> &fluid, ParticleSet<dim> &set,
              Collisions<dim> &collisions, const std::string &model = repulsion,
-             const std::string &lubrication = "")
+             const std::string &lubrication = "", const std::string &wall = "",
+             const std::string &floor_velocity = "")
   {
     declare_all_parameters(prm);
     prm.parse_input_from_string(
@@ -56,7 +58,9 @@ namespace
       (dim == 2 ? "4, 6" : "4, 6, 5") + "\n  set Periodic directions = " + periodic +
       "\nend\nsubsection Particles\n  set Particles = " + particles +
       "\nend\nsubsection Collisions\n" + model + "end\nsubsection Lubrication\n" +
-      lubrication + "end\n");
+      lubrication + "end\nsubsection Wall repulsion\n" + wall +
+      "end\nsubsection Boundary conditions\n  set Wall velocities = " +
+      (floor_velocity.empty() ? "" : "y-: " + floor_velocity) + "\nend\n");
     domain.parse_parameters(prm);
     fluid.parse_parameters(prm);
     set.parse_parameters(prm, domain);
@@ -331,6 +335,159 @@ namespace
           "without friction no spin and no tangential impulse");
   }
 
+  /// A dry ball after the run of dry_on_floor: its velocity and spin about the axis of
+  /// rolling along x (z in 2D, −z in 3D for the right-handed sense), mass, moment of
+  /// inertia and gap to the floor, and the largest |F_t|/F_n.
+  struct FloorRun
+  {
+    Tensor<1, 3> V, omega;
+    double       mass = 0, inertia = 0, gap = 0, largest_ratio = 0;
+    double       restitution = std::numeric_limits<double>::quiet_NaN();
+  };
+
+  /**
+   * A dry ball (radius 0.1, density 2) starts at (0.5, ...) with velocity V0 just above
+   * the floor (which slides along x at floor_velocity), under gravity (0, −9.8) or none,
+   * and meets the floor's spring-dashpot wall
+   * force (WallRepulsion, range 0.001) and friction: the particle equations
+   * m dV/dt = m g + F, J dω/dt = T, integrated for `duration` with BDF2 and Newton's method
+   * on the residual and the derivative D that the simulation uses.
+   */
+  template <int dim>
+  FloorRun dry_on_floor(const Tensor<1, dim> &V0, const bool gravity, const double friction,
+                        const double restitution, const double duration, const double dt,
+                        const double floor_velocity = 0)
+  {
+    constexpr double radius = 0.1, density = 2, range = 0.001;
+    ParameterHandler  prm;
+    Domain<dim>       domain;
+    Fluid<dim>        fluid;
+    ParticleSet<dim>  set;
+    Collisions<dim>   collisions;
+    WallRepulsion<dim> walls;
+    const std::string  centre = (dim == 2 ? "0.5, " : "0.5, ") + std::to_string(radius + range) +
+                               (dim == 2 ? "" : ", 0.5");
+    parse(prm, "", centre + " : " + std::to_string(radius) + " : " + std::to_string(density),
+          domain, fluid, set, collisions, "  set Model = none\n", "",
+          "  set Model = spring-dashpot\n  set Range = " + std::to_string(range) +
+            "\n  set Restitution coefficient = " + std::to_string(restitution) +
+            "\n  set Friction coefficient = " + std::to_string(friction) + "\n",
+          floor_velocity == 0 ? "" : std::to_string(floor_velocity) + (dim == 2 ? ", 0" : ", 0, 0"));
+    walls.parse_parameters(prm);
+    walls.initialize(domain, fluid, set, range);
+    FloorRun result;
+    result.mass    = density * RigidBody<dim>::volume(radius);
+    result.inertia = density * RigidBody<dim>::inertia(radius);
+    Particle<dim> &P = set[0];
+    P.velocity = P.velocity_old = P.velocity_old2 = V0;
+    P.position_old = P.position - dt * V0;
+    const Tensor<1, dim> g = (gravity ? fluid.gravity : Tensor<1, dim>());
+    const unsigned int   n = set.n_unknowns();
+    Eigen::SparseMatrix<double> D_mass(n, n);
+    for (unsigned int d = 0; d < n; ++d)
+      D_mass.coeffRef(d, d) = (d < dim ? result.mass : result.inertia);
+    bool touched = false;
+    for (double t = 0; t < duration; t += dt)
+      {
+        const std::array<double, 3> c{{1.5 / dt, -2 / dt, 0.5 / dt}};
+        Eigen::VectorXd             y = set.get_unknowns();
+        for (unsigned int it = 0; it < 50; ++it)
+          {
+            set.set_unknowns(y);
+            Eigen::VectorXd r(n);
+            for (unsigned int d = 0; d < dim; ++d)
+              r[d] = result.mass * (P.acceleration(c)[d] - g[d]);
+            for (unsigned int k = 0; k < RigidBody<dim>::n_rotations; ++k)
+              r[dim + k] =
+                result.inertia * P.angular_acceleration(c)[RigidBody<dim>::rotation_component(k)];
+            Eigen::SparseMatrix<double> D = c[0] * D_mass;
+            P.contact_force = Tensor<1, dim>();
+            walls.add_to_particle_rows(set, c, r, &D);
+            if (r.norm() < 1e-13)
+              break;
+            y -= Eigen::MatrixXd(D).fullPivLu().solve(r);
+          }
+        set.set_unknowns(y);
+        if (P.contact_force[1] > 0)
+          result.largest_ratio =
+            std::max(result.largest_ratio,
+                     std::sqrt(P.contact_force.norm_square() - std::pow(P.contact_force[1], 2)) /
+                       P.contact_force[1]);
+        const Point<dim> next = P.position_after_step(c);
+        P.position_old  = P.position;
+        P.position      = next;
+        P.velocity_old2 = P.velocity_old;
+        P.velocity_old  = P.velocity;
+        P.omega_old2    = P.omega_old;
+        P.omega_old     = P.omega;
+        result.gap      = P.position[1] - radius;
+        touched         = touched || result.gap < range;
+        if (!gravity && touched && result.gap > range)
+          {
+            result.restitution = -P.velocity[1] / V0[1];
+            break;
+          }
+      }
+    for (unsigned int d = 0; d < dim; ++d)
+      result.V[d] = P.velocity[d];
+    result.omega = P.omega;
+    return result;
+  }
+
+  /**
+   * A dry ball thrown along the floor at speed 1 with friction 0.3 slides, decelerates at
+   * 0.3 g and spins up until its surface stops sliding on the floor; it then rolls at
+   * V = V0 m r²/(I + m r²), r = R + g/2 its arm to the contact point in the middle of the
+   * gap (2/3 V0 for a disk, 5/7 V0 for a sphere when the gap vanishes). Friction bounds
+   * the tangential force by 0.3 times the normal one. A wall contact without gravity
+   * bounces with the restitution coefficient.
+   */
+  template <int dim>
+  void test_wall_friction()
+  {
+    std::cout << dim << "D dry ball thrown along the floor with wall friction" << std::endl;
+    const double   mu = 0.3, v0 = 1, dt = 1e-4;
+    Tensor<1, dim> V0;
+    V0[0]             = v0;
+    // Rolling starts after V0/(μ g) (1 + m R²/I)⁻¹ ≈ 0.11 (disk) and 0.10 (sphere).
+    const FloorRun run = dry_on_floor<dim>(V0, true, mu, 0.5, 0.3, dt);
+    const double   arm = 0.1 + run.gap / 2;
+    const double   rolling = v0 * run.mass * arm * arm / (run.inertia + run.mass * arm * arm);
+    // Rolling along +x turns the ball clockwise about z.
+    check(std::abs(run.V[0] - rolling) < 2e-3 * v0,
+          "the ball ends rolling at V0 m r²/(I + m r²) = " + std::to_string(rolling),
+          "V = " + std::to_string(run.V[0]));
+    check(std::abs(run.V[0] + run.omega[2] * arm) < 2e-3 * v0,
+          "its surface does not slide on the floor: V = -ω r",
+          "V + ω r = " + std::to_string(run.V[0] + run.omega[2] * arm));
+    check(run.largest_ratio <= mu * (1 + 1e-9), "|F_t| <= 0.3 F_n at every step",
+          "largest ratio " + std::to_string(run.largest_ratio));
+    check(std::abs(run.V[1]) < 1e-6 && std::abs(run.gap - 0.001) < 0.001,
+          "the ball stays on the floor, within the range",
+          "V_y = " + std::to_string(run.V[1]) + ", gap " + std::to_string(run.gap));
+    // A ball at rest on a floor sliding at 1 is dragged until its surface moves with the
+    // floor: V + |ω| r = 1 with V = I/(I + m r²) (1/3 for a disk, 2/7 for a sphere).
+    const FloorRun dragged = dry_on_floor<dim>(Tensor<1, dim>(), true, mu, 0.5, 0.3, dt, v0);
+    const double   dragged_arm = 0.1 + dragged.gap / 2;
+    const double   carried =
+      v0 * dragged.inertia / (dragged.inertia + dragged.mass * dragged_arm * dragged_arm);
+    check(std::abs(dragged.V[0] - carried) < 2e-3 * v0 &&
+            std::abs(dragged.V[0] + dragged.omega[2] * dragged_arm - v0) < 2e-3 * v0,
+          "a sliding floor drags the ball to V = I/(I + m r²) = " + std::to_string(carried) +
+            ", rolling on the floor",
+          "V = " + std::to_string(dragged.V[0]) + ", surface " +
+            std::to_string(dragged.V[0] + dragged.omega[2] * dragged_arm));
+    const FloorRun frictionless = dry_on_floor<dim>(V0, true, 0, 0.5, 0.3, dt);
+    check(std::abs(frictionless.V[0] - v0) < 1e-9 && frictionless.omega.norm() == 0,
+          "without friction it slides on, unspun");
+    Tensor<1, dim> down;
+    down[1] = -0.5;
+    // The dry contact lasts t_c = √(m/k) √(π² + ln² e) ≈ 3·10⁻³ (k = 100 m g / ρ): 30 steps.
+    const double e = 0.6, bounced = dry_on_floor<dim>(down, false, 0, e, 0.1, dt).restitution;
+    check(std::abs(bounced - e) < 0.02, "a ball hitting the wall bounces with e = 0.6",
+          "measured " + std::to_string(bounced));
+  }
+
   void test_restitution()
   {
     std::cout << "Dry bounce of two equal disks with the spring-dashpot force" << std::endl;
@@ -378,6 +535,8 @@ int main()
       test_force<2>("", "0.4, 0.5 : 0.1 : 2 ; 0.66, 0.5 : 0.1 : 3", false, spring);
       test_restitution();
       test_friction();
+      test_wall_friction<2>();
+      test_wall_friction<3>();
       // Friction on a sliding, turning pair, in 2D and 3D.
       const std::string friction = spring + "  set Friction coefficient = 0.3\n";
       test_force<2>("", "0.4, 0.5 : 0.1 : 2 ; 0.59, 0.6 : 0.1 : 3", true, friction);

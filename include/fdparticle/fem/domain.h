@@ -67,11 +67,12 @@ namespace fdparticle
                                const bool                 homogeneous,
                                AffineConstraints<double> &constraints) const;
 
-    /// A wall near a ball: the gap between them and the wall's inward normal.
+    /// A wall near a ball: the gap between them, the wall's inward normal and its
+    /// (tangential) velocity.
     struct WallGap
     {
       double         gap;
-      Tensor<1, dim> normal;
+      Tensor<1, dim> normal, velocity;
     };
     /// The walls whose gap to the ball of centre x and radius r is below reach.
     std::vector<WallGap> walls_near(const Point<dim> &x, const double r, const double reach) const;

@@ -10,6 +10,7 @@
 #include <fdparticle/particles/pair_search.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/particles/repulsion_law.h>
+#include <fdparticle/particles/spring_dashpot_law.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -33,11 +34,10 @@ namespace fdparticle
    *   363–426, eq. (2.6)), the RepulsionLaw of the gap g = |X_i − X_j| − R_i − R_j along
    *   the line of centres, F_i = F(g) n = −F_j with n = (X_i − X_j)/|X_i − X_j|, with the
    *   range and the stiffness that the wall repulsion uses.
-   * - spring-dashpot: a linear soft-sphere contact (doc/method.md §12) acting from the same
-   *   range: F_i = (k δ − γ v_n) n with the compression δ = ρ − g > 0 and v_n = (V_i − V_j)·n.
-   *   The damping γ = 2 ζ √(m_eff k), ζ = −ln e / √(π² + ln² e), gives a dry pair of
-   *   effective mass m_eff = m_i m_j/(m_i + m_j) the restitution coefficient e; the
-   *   contact lasts t_c = √(m_eff/k) √(π² + ln² e). The contact starts a cell before the
+   * - spring-dashpot: a linear soft-sphere contact (SpringDashpotLaw) acting from the same
+   *   range: F_i = (k δ − γ v_n) n with the compression δ = ρ − g > 0 and v_n = (V_i − V_j)·n,
+   *   damped so that a dry pair bounces with the restitution coefficient e. The contact
+   *   starts a cell before the
    *   surfaces touch, as Kempe & Fröhlich (J. Fluid Mech. 709 (2012) 445–489) lengthen
    *   theirs: balls closer than a cell share cells, whose one velocity field cannot follow
    *   two rigid motions, and there the discrete flow stops an approaching ball with a
@@ -95,22 +95,14 @@ namespace fdparticle
     /// The entries as read; empty for 'auto'.
     std::optional<double> range_entry, stiffness_entry, spring_entry;
     double range = 0, restitution = 1, friction = 0;
-    /// The friction's slip velocity, relative to the spring's velocity scale ρ/t_c (it
-    /// crosses its range in about t_c): a contact that should stick creeps at a thousandth
-    /// of the speed that would close the range within one contact time.
-    static constexpr double slip_velocity_fraction = 1e-3;
     /// Apparent weight |ρ_k − ρ_f| |P_k| |g| and dry mass ρ_k |P_k| of each ball.
     std::vector<double>              weight, mass;
     std::unique_ptr<PairSearch<dim>> search;
 
-    RepulsionLaw   law(const unsigned int i, const unsigned int j) const;
-    NormalLawValue spring_dashpot(const unsigned int i, const unsigned int j,
-                                  const ParticleSet<dim> &particles, const double gap,
-                                  const double normal_velocity) const;
-    double spring_stiffness(const unsigned int i, const unsigned int j) const;
-    /// √(m_eff/k) √(π² + ln² e): how long a contact of effective mass m_eff and spring
-    /// stiffness k lasts.
-    double contact_time(const double effective_mass, const double stiffness) const;
+    RepulsionLaw     law(const unsigned int i, const unsigned int j) const;
+    SpringDashpotLaw spring_dashpot(const unsigned int i, const unsigned int j,
+                                    const ParticleSet<dim> &particles) const;
+    double           spring_stiffness(const unsigned int i, const unsigned int j) const;
     double effective_mass(const unsigned int i, const unsigned int j,
                           const ParticleSet<dim> &particles) const;
   };

@@ -3,7 +3,9 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <fdparticle/fem/domain.h>
 #include <fdparticle/particles/particle_set.h>
+#include <fdparticle/particles/spring_dashpot_law.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -24,9 +26,11 @@ namespace fdparticle
    *
    * and the torques r_i × F_t,i and r_j × F_t,j, with the arms r_i = −(R_i + g/2) n and
    * r_j = (R_j + g/2) n to the middle of the gap g: the contact acts across a gap (or an
-   * overlap), and one point for both balls keeps the pair's angular momentum. The Coulomb law's jump at v_t = 0 is
-   * smoothed over the slip velocity v_s, so the force has a derivative for Newton; a
-   * contact that should stick creeps at a speed of order v_s instead.
+   * overlap), and one point for both balls keeps the pair's angular momentum. Against a
+   * wall, the partner is the wall: at rest or sliding along itself, of infinite mass, with
+   * the arm r_i = −(R_i + g/2) n to the same middle of the gap. The Coulomb law's jump at
+   * v_t = 0 is smoothed over the slip velocity v_s, so the force has a derivative for
+   * Newton; a contact that should stick creeps at a speed of order v_s instead.
    *
    * It is implicit like the normal force, evaluated at X^{n+1}(V), V and ω of the
    * iterate. Its block of the particle matrix, at most 12 × 12 per contact, is taken by
@@ -41,18 +45,32 @@ namespace fdparticle
     /// The normal force magnitude at gap g and normal relative velocity v_n.
     using NormalForce = std::function<double(const double gap, const double normal_velocity)>;
 
-    ContactFriction(const double coefficient, const double slip_velocity);
+    /// Friction of the given coefficient on a contact whose normal force is the spring:
+    /// the slip velocity is slip_velocity_fraction × (its range / its duration).
+    ContactFriction(const double coefficient, const SpringDashpotLaw &spring);
 
     /**
      * Add the friction of balls i and j, whose centres at the iterate are offset by
      * X_i − X_j + shift (shift: the periodic image), to the force and torque rows of the
      * free ones, its derivative to D (if given), and the force to contact_force.
      */
-    void add(ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
-             const Tensor<1, dim> &shift, const NormalForce &normal_force,
-             const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
+    void add_pair(ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
+                  const Tensor<1, dim> &shift, const NormalForce &normal_force,
+                  const std::array<double, 3> &c, Eigen::VectorXd &r_p,
+                  Eigen::SparseMatrix<double> *D) const;
+
+    /// The same for ball i against a wall at the iterate's gap wall.gap.
+    void add_wall(ParticleSet<dim> &particles, const unsigned int i,
+                  const typename Domain<dim>::WallGap &wall, const NormalForce &normal_force,
+                  const std::array<double, 3> &c, Eigen::VectorXd &r_p,
+                  Eigen::SparseMatrix<double> *D) const;
 
   private:
+    /// The slip velocity, relative to the spring's velocity scale ρ/t_c (it crosses its
+    /// range in about t_c): a contact that should stick creeps at a thousandth of the speed
+    /// that would close the range within one contact time.
+    static constexpr double slip_velocity_fraction = 1e-3;
+
     static constexpr unsigned int n_unknowns = RigidBody<dim>::n_unknowns;
     /// The unknowns (V then ω) of ball i, then of ball j, or their force and torque rows.
     using PairVector = Eigen::Matrix<double, 2 * n_unknowns, 1>;
@@ -63,11 +81,24 @@ namespace fdparticle
 
     double coefficient, slip_velocity;
 
-    /// Force and torque rows (V then ω, ball i then j) of the friction for the unknowns u
-    /// (the same layout), the balls' histories taken from P_i, P_j.
-    PairVector rows(const Particle<dim> &P_i, const Particle<dim> &P_j,
-                    const Tensor<1, dim> &shift, const NormalForce &normal_force,
+    /// What ball i touches: ball j (its periodic image shifted by shift), or a wall
+    /// (j invalid) whose plane is where n·x = plane, moving at wall_velocity.
+    struct Partner
+    {
+      unsigned int   j = numbers::invalid_unsigned_int;
+      Tensor<1, dim> shift, normal, wall_velocity;
+      double         plane = 0;
+    };
+
+    /// Force and torque rows (V then ω, ball i then j; zero for a wall) of the friction for
+    /// the unknowns u (the same layout), the balls' histories taken from the particles.
+    PairVector rows(const ParticleSet<dim> &particles, const unsigned int i,
+                    const Partner &partner, const NormalForce &normal_force,
                     const std::array<double, 3> &c, const PairVector &u) const;
+
+    void add(ParticleSet<dim> &particles, const unsigned int i, const Partner &partner,
+             const NormalForce &normal_force, const std::array<double, 3> &c,
+             Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
   };
 } // namespace fdparticle
 

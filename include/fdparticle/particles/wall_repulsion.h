@@ -9,12 +9,14 @@
 #include <fdparticle/particles/normal_contact.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/particles/repulsion_law.h>
+#include <fdparticle/particles/spring_dashpot_law.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace fdparticle
@@ -22,11 +24,16 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * Short-range particle–wall repulsion (subsection Wall repulsion), after Glowinski et al.,
-   * J. Comput. Phys. 169 (2001) 363–426, eq. (2.7): a force F(g) n normal to each wall, F
-   * the RepulsionLaw of the gap g between the ball and the wall, n the wall's inward
-   * normal. A settling ball rests where F equals its apparent weight W: at
-   * g = ρ (1 − √(W/K)).
+   * Short-range particle–wall contact (subsection Wall repulsion), a force F n normal to
+   * each wall of inward normal n, F a law of the gap g between the ball and the wall:
+   *
+   * - repulsion: Glowinski et al.'s RepulsionLaw (J. Comput. Phys. 169 (2001) 363–426,
+   *   eq. (2.7)). A settling ball rests where F equals its apparent weight W: at
+   *   g = ρ (1 − √(W/K)).
+   * - spring-dashpot: the SpringDashpotLaw of the ball against an immovable wall
+   *   (m_eff = the ball's mass), which bounces a dry ball with the restitution
+   *   coefficient, and optional Coulomb friction (ContactFriction) against the wall's
+   *   motion, which makes a ball sliding on a wall roll.
    *
    * The force is evaluated at the end-of-step position X^{n+1}(V) of the BDF formula
    * ((F6) as implemented, doc/method.md §2), so it is implicit: its derivative enters the
@@ -41,11 +48,16 @@ namespace fdparticle
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
-    /// Resolve the 'auto' defaults: ρ = h_finest, K = 100 × apparent weight of each ball.
+    /// Resolve the 'auto' defaults: ρ = h_finest, K = 100 × apparent weight of each ball,
+    /// and the spring's k = K/ρ.
     void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
                     const ParticleSet<dim> &particles, const double finest_cell_size);
 
     bool enabled() const { return on; }
+
+    /// For the log: the spring-dashpot contact duration of the shortest wall contact
+    /// against the time step dt; empty for the repulsion.
+    std::string describe(const double dt) const;
 
     /**
      * Subtract F(X^{n+1}(V)) from the force-balance rows of the free particles (their
@@ -56,12 +68,15 @@ namespace fdparticle
                               Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
 
   private:
-    bool                  on = true;
+    bool                  on = true, spring_dashpot = false;
     /// The entries as read; empty for 'auto'.
-    std::optional<double> range_entry, stiffness_entry;
-    double                rho = 0;
+    std::optional<double> range_entry, stiffness_entry, spring_entry;
+    double                rho = 0, restitution = 1, friction = 0;
     std::vector<double>   stiffness; // K per particle
+    std::vector<double>   mass;      // dry mass ρ_k |P_k| per particle
     Domain<dim>           domain;
+
+    SpringDashpotLaw spring(const unsigned int k) const;
   };
 } // namespace fdparticle
 

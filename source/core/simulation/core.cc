@@ -182,8 +182,10 @@ namespace fdparticle
           << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)";
     pcout << partition_summary() << std::endl;
     check_resolution();
-    if (const std::string line = collisions.describe(time.next_step()); !line.empty())
-      pcout << line << std::endl;
+    for (const std::string &line :
+         {repulsion.describe(time.next_step()), collisions.describe(time.next_step())})
+      if (!line.empty())
+        pcout << line << std::endl;
 
     // (simulated time, wall seconds) of the recent steps, for the estimate of the time left.
     std::deque<std::pair<double, double>> recent;
