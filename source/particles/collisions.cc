@@ -191,9 +191,7 @@ namespace fdparticle
           NormalContact<dim>::pair(particles, pair.i, pair.j, pair.offset, pair.gap);
         if (contact_model == Model::repulsion)
           {
-            const RepulsionLaw F = law(pair.i, pair.j);
-            contact.add(particles, NormalLawValue{F.force(pair.gap), F.derivative(pair.gap), 0.0},
-                        c, r_p, D);
+            contact.add(particles, law(pair.i, pair.j).value(pair.gap), c, r_p, D);
             continue;
           }
         const SpringDashpotLaw spring = spring_dashpot(pair.i, pair.j, particles);

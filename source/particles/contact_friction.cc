@@ -1,8 +1,8 @@
 #include <fdparticle/particles/contact_friction.h>
 #include <fdparticle/particles/rigid_body.h>
 
+#include <array>
 #include <cmath>
-#include <vector>
 
 namespace fdparticle
 {
@@ -119,11 +119,10 @@ namespace fdparticle
     if (coefficient == 0)
       return;
     // The balls of the contact: i, and j unless the partner is a wall.
-    std::vector<unsigned int> ball{i};
-    if (partner.j != numbers::invalid_unsigned_int)
-      ball.push_back(partner.j);
-    PairVector u = PairVector::Zero();
-    for (unsigned int s = 0; s < ball.size(); ++s)
+    const std::array<unsigned int, 2> ball{{i, partner.j}};
+    const unsigned int n_balls = (partner.j == numbers::invalid_unsigned_int ? 1 : 2);
+    PairVector         u       = PairVector::Zero();
+    for (unsigned int s = 0; s < n_balls; ++s)
       {
         const Particle<dim> &P = particles[ball[s]];
         for (unsigned int d = 0; d < dim; ++d)
@@ -132,7 +131,7 @@ namespace fdparticle
           u[s * n_unknowns + dim + r] = P.omega[RigidBody<dim>::rotation_component(r)];
       }
     const auto value = rows(particles, i, partner, normal_force, c, u);
-    for (unsigned int s = 0; s < ball.size(); ++s)
+    for (unsigned int s = 0; s < n_balls; ++s)
       {
         Particle<dim> &P = particles[ball[s]];
         for (unsigned int d = 0; d < dim; ++d)
@@ -145,7 +144,7 @@ namespace fdparticle
     if (D == nullptr)
       return;
     const double step = difference_step * slip_velocity;
-    for (unsigned int t = 0; t < ball.size(); ++t)
+    for (unsigned int t = 0; t < n_balls; ++t)
       {
         const unsigned int column = particles[ball[t]].first_unknown;
         if (column == numbers::invalid_unsigned_int)
@@ -159,7 +158,7 @@ namespace fdparticle
             const PairVector derivative = (rows(particles, i, partner, normal_force, c, plus) -
                                            rows(particles, i, partner, normal_force, c, minus)) /
                                           (2 * step);
-            for (unsigned int s = 0; s < ball.size(); ++s)
+            for (unsigned int s = 0; s < n_balls; ++s)
               {
                 const unsigned int row = particles[ball[s]].first_unknown;
                 if (row != numbers::invalid_unsigned_int)

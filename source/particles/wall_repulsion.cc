@@ -119,8 +119,8 @@ namespace fdparticle
       return "";
     double shortest = std::numeric_limits<double>::max();
     for (unsigned int k = 0; k < mass.size(); ++k)
-      if (spring(k).stiffness > 0)
-        shortest = std::min(shortest, spring(k).duration);
+      if (const SpringDashpotLaw law = spring(k); law.stiffness > 0)
+        shortest = std::min(shortest, law.duration);
     if (shortest == std::numeric_limits<double>::max())
       return "";
     std::ostringstream out;
@@ -147,9 +147,7 @@ namespace fdparticle
             const auto contact = NormalContact<dim>::wall(particles, k, wall.normal, wall.gap);
             if (!spring_dashpot)
               {
-                contact.add(particles,
-                            NormalLawValue{law.force(wall.gap), law.derivative(wall.gap), 0.0},
-                            c, r_p, D);
+                contact.add(particles, law.value(wall.gap), c, r_p, D);
                 continue;
               }
             const SpringDashpotLaw spring_k = spring(k);

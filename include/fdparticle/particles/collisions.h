@@ -37,12 +37,12 @@ namespace fdparticle
    * - spring-dashpot: a linear soft-sphere contact (SpringDashpotLaw) acting from the same
    *   range: F_i = (k δ − γ v_n) n with the compression δ = ρ − g > 0 and v_n = (V_i − V_j)·n,
    *   damped so that a dry pair bounces with the restitution coefficient e. The contact
-   *   starts a cell before the
-   *   surfaces touch, as Kempe & Fröhlich (J. Fluid Mech. 709 (2012) 445–489) lengthen
-   *   theirs: balls closer than a cell share cells, whose one velocity field cannot follow
-   *   two rigid motions, and there the discrete flow stops an approaching ball with a
-   *   force that depends on the mesh rather than on μ (doc/particles.md). With a friction
-   *   coefficient μ_c > 0 the contact also has Coulomb friction (ContactFriction).
+   *   starts a cell before the surfaces touch, as Kempe & Fröhlich (J. Fluid Mech. 709
+   *   (2012) 445–489) lengthen theirs: balls closer than a cell share cells, whose one
+   *   velocity field cannot follow two rigid motions, and there the discrete flow stops an
+   *   approaching ball with a force that depends on the mesh rather than on μ
+   *   (doc/particles.md). With a friction coefficient μ_c > 0 the contact also has Coulomb
+   *   friction (ContactFriction).
    *
    * The forces are evaluated at the end-of-step positions X^{n+1}(V) and velocities V and
    * are implicit (NormalContact): their derivatives couple the two particles' rows of the

@@ -1,6 +1,8 @@
 #ifndef fdparticle_particles_repulsion_law_h
 #define fdparticle_particles_repulsion_law_h
 
+#include <fdparticle/particles/normal_contact.h>
+
 namespace fdparticle
 {
   /**
@@ -36,6 +38,12 @@ namespace fdparticle
 
     /// dF/dg (negative: the force grows as the gap closes).
     double derivative(const double gap) const { return -2 * stiffness * (1 - gap / range) / range; }
+
+    /// The force and its derivatives as a contact law (it does not depend on the velocity).
+    NormalLawValue value(const double gap) const
+    {
+      return NormalLawValue{force(gap), derivative(gap), 0.0};
+    }
   };
 } // namespace fdparticle
 
