@@ -1,15 +1,27 @@
 #!/usr/bin/python3
 """The lubrication correction on Brenner's sphere approaching a wall (doc/particles.md,
 'Lubrication'). Runs prm/validation/wall.prm (a = 1, U = 1, mu = 1, steady Stokes in one
-step) with Lubrication/Enabled = true at gaps delta/a = 0.1 ... 1 and particle refinement
-levels 3 and 4 (d/h = 4, 8), with a time step of 0.001 so that the sphere moves 0.1 % of
-its radius during the step. Each run reports the resolved force (particles.csv fy) and
-the correction (contact_fy) separately, so one run gives kappa = F / (6 pi mu a U) with and
-without the correction. The reference is Brenner's exact series (J. Fluid Mech. 1961),
-summed here. Writes doc/lubrication_wall.csv and doc/lubrication_wall.png.
+step) with Lubrication/Enabled = true at gaps delta/a = 0.03 ... 1 and particle
+refinement levels 3 and 4 (d/h = 4, 8; --levels 3 4 5 adds d/h = 16: 455 k DoFs and about
+14 GB per run with the direct solver), with a time step of 1e-5 so that the sphere moves
+0.001 % of its radius during the step (the resolved force sees the gap at the start of the
+step, the correction at its end) and the density 1e-9 (alpha = 1e-4, as in the prm). Each run reports the resolved force (particles.csv fy)
+and the correction (contact_fy) separately, so one run gives kappa = F / (6 pi mu a U) with
+and without the correction, and the shift s: the gap widening delta + s at which Brenner's
+kappa equals the resolved one (the 'auto' Gap shift is fitted to it). The reference is
+Brenner's exact series (J. Fluid Mech. 1961), summed here. Writes doc/lubrication_wall.csv
+and doc/lubrication_wall.png.
 
-Regenerate (from the top of the repository, after scripts/build.sh; ~10 min on 2 cores):
+--dimension 2 runs the same scene with a cylinder (per unit length; kappa = F/(mu U)). No
+exact solution exists in 2D, so the reference is the resolved force of the same scene at
+--reference-level (default 8, d/h = 128: at least 3 cells in the thinnest gap, 0.05a), and
+the shift s solves resolved = reference - (C(delta) - C(delta + s)) for the leading term
+C(g) = 3 sqrt(2) pi (a/g)^(3/2). Writes doc/lubrication_wall_2d.csv and .png.
+
+Regenerate (from the top of the repository, after scripts/build.sh; about 15 and 10 min on
+2 cores):
     /usr/bin/python3 benchmarks/lubrication_wall.py [--executable PATH] [--work DIR]
+        [--levels 3 4] [--dimension 2 [--reference-level 8]]
 """
 import argparse
 import csv
@@ -21,8 +33,7 @@ from importlib.machinery import SourceFileLoader
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 DOC = os.path.join(TOP, "doc")
-GAPS = (0.1, 0.15, 0.25, 0.4, 0.6, 1.0)
-LEVELS = (3, 4)
+GAPS = {3: (0.03, 0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0), 2: (0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0)}
 
 
 def brenner(delta):
@@ -38,62 +49,105 @@ def brenner(delta):
     return 4.0 / 3.0 * math.sinh(alpha) * total
 
 
+def effective_gap(kappa):
+    """The gap at which Brenner's kappa equals kappa (kappa falls as the gap grows)."""
+    low, high = 1e-6, 100.0
+    for _ in range(200):
+        middle = math.sqrt(low * high)
+        low, high = (middle, high) if brenner(middle) > kappa else (low, middle)
+    return math.sqrt(low * high)
+
+
+def run(args, base, levels, delta):
+    """Resolved force and correction, in units of kappa, of the sphere (cylinder) at gap
+    delta with the given particle refinement levels."""
+    name = f"{args.dimension}d_lv{levels}_gap{delta}"
+    out = os.path.join(args.work, name)
+    prm = os.path.join(args.work, name + ".prm")
+    # The density keeps alpha = rho/dt at the prm's 1e-4 << mu/a^2: the flow reaches the
+    # walls of the box within the step, as a steady one does.
+    scene = {"Refinement/Particle refinement levels": levels, "Fluid/Density": 1e-9,
+             "Time/Time step": 1e-5, "Time/End time": 1e-5, "Output/Directory": out}
+    if args.dimension == 3:
+        scene["Particles/Particles"] = f"0, {1 + delta}, 0 : 1 : 1 : prescribed : 0, -1, 0"
+    else:
+        scene.update({"Dimension": 2, "Gravity": "0, 0", "Geometry/Lower corner": "-8, 0",
+                      "Geometry/Upper corner": "8, 16", "Geometry/Subdivisions": "4, 4",
+                      "Particles/Particles": f"0, {1 + delta} : 1 : 1 : prescribed : 0, -1"})
+    with open(prm, "w") as f:
+        f.write(STUDY.apply_overrides(base, scene) + "subsection Lubrication\n  set Enabled = true\nend\n")
+    with open(os.path.join(args.work, name + ".log"), "w") as log:
+        subprocess.run([args.executable, prm], stdout=log, stderr=subprocess.STDOUT, check=True)
+    with open(os.path.join(out, "particles.csv")) as f:
+        last = list(csv.DictReader(f))[-1]
+    scale = 6 * math.pi if args.dimension == 3 else 1.0
+    return abs(float(last["fy"])) / scale, abs(float(last["contact_fy"])) / scale
+
+
+def cylinder_shift(delta, resolved, reference):
+    """s with resolved = reference - (C(delta) - C(delta + s)), C the 2D leading term."""
+    C = lambda g: 3 * math.sqrt(2) * math.pi * g ** -1.5
+    wide = C(delta) - reference + resolved
+    return (3 * math.sqrt(2) * math.pi / wide) ** (2 / 3) - delta if wide > 0 else float("nan")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
     p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "lubrication_wall"))
+    p.add_argument("--levels", type=int, nargs="+", default=[3, 4],
+                   help="particle refinement levels (d/h = 2^(levels - 1))")
+    p.add_argument("--dimension", type=int, choices=(2, 3), default=3)
+    p.add_argument("--reference-level", type=int, default=8, help="2D: level of the reference")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     with open(os.path.join(TOP, "prm", "validation", "wall.prm")) as f:
         base = f.read()
+    if args.dimension == 2:
+        references = {delta: run(args, base, args.reference_level, delta)[0] for delta in GAPS[2]}
     rows = []
-    for levels in LEVELS:
+    for levels in args.levels:
         h = 16 / 4 / 2 ** levels
-        for delta in GAPS:
-            name = f"lv{levels}_gap{delta}"
-            out = os.path.join(args.work, name)
-            prm = os.path.join(args.work, name + ".prm")
-            with open(prm, "w") as f:
-                f.write(STUDY.apply_overrides(base, {
-                    "Particles/Particles": f"0, {1 + delta}, 0 : 1 : 1 : prescribed : 0, -1, 0",
-                    "Refinement/Particle refinement levels": levels,
-                    "Time/Time step": 0.001, "Time/End time": 0.001,
-                    "Output/Directory": out}) + "subsection Lubrication\n  set Enabled = true\nend\n")
-            with open(os.path.join(args.work, name + ".log"), "w") as log:
-                subprocess.run([args.executable, prm], stdout=log, stderr=subprocess.STDOUT, check=True)
-            with open(os.path.join(out, "particles.csv")) as f:
-                last = list(csv.DictReader(f))[-1]
-            resolved = abs(float(last["fy"])) / (6 * math.pi)
-            correction = abs(float(last["contact_fy"])) / (6 * math.pi)
-            ref = brenner(delta)
+        for delta in GAPS[args.dimension]:
+            resolved, correction = run(args, base, levels, delta)
+            if args.dimension == 3:
+                ref, shift = brenner(delta), effective_gap(resolved) - delta
+            else:
+                ref = references[delta]
+                shift = cylinder_shift(delta, resolved, ref)
             rows.append([f"{2 / h:g}", delta, f"{delta / h:.2g}", f"{ref:.4f}", f"{resolved:.4f}",
-                         f"{100 * (resolved / ref - 1):+.1f}", f"{correction:.4f}",
-                         f"{100 * ((resolved + correction) / ref - 1):+.1f}"])
+                         f"{100 * (resolved / ref - 1):+.1f}", f"{shift:.3f}",
+                         f"{correction:.4f}", f"{100 * ((resolved + correction) / ref - 1):+.1f}"])
             print(" ".join(str(c) for c in rows[-1]), flush=True)
-    header = ["d/h", "delta/a", "gap/h", "Brenner kappa", "resolved", "error %",
+    reference = "Brenner kappa" if args.dimension == 3 else f"reference (d/h = {2 ** (args.reference_level - 1)})"
+    header = ["d/h", "delta/a", "gap/h", reference, "resolved", "error %", "shift s/a",
               "correction", "error with correction %"]
-    with open(os.path.join(DOC, "lubrication_wall.csv"), "w", newline="") as f:
+    stem = os.path.join(DOC, "lubrication_wall" + ("" if args.dimension == 3 else "_2d"))
+    with open(stem + ".csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(header)
         w.writerows(rows)
-    data = os.path.join(args.work, "lubrication_wall.dat")
+    data = os.path.join(args.work, f"lubrication_wall_{args.dimension}d.dat")
     with open(data, "w") as f:
-        for levels in LEVELS:
+        for levels in args.levels:
             dh = f"{2 / (16 / 4 / 2 ** levels):g}"
             f.write(f'"d/h = {dh}"\n')
             for r in rows:
                 if r[0] == dh:
-                    f.write(f"{r[1]} {r[5]} {r[7]}\n")
+                    f.write(f"{r[1]} {r[5]} {r[8]}\n")
             f.write("\n\n")
+    curves = ", \\\n     ".join(
+        f"'{data}' index {i} using 1:2 with linespoints lc {i + 1} dt 2 title 'd/h = {2 ** (l - 1)}, resolved', "
+        f"'{data}' index {i} using 1:3 with linespoints lc {i + 1} title 'd/h = {2 ** (l - 1)}, with lubrication'"
+        for i, l in enumerate(args.levels))
+    title = ("Sphere approaching a wall: error of kappa against Brenner (1961)" if args.dimension == 3
+             else f"Cylinder approaching a wall: error against d/h = {2 ** (args.reference_level - 1)}")
     subprocess.run(["gnuplot"], check=False, text=True, input=f"""
-set terminal pngcairo size 800,550; set output '{DOC}/lubrication_wall.png'
+set terminal pngcairo size 800,550; set output '{stem}.png'
 set logscale x; set grid; set key right bottom
-set title "Sphere approaching a wall: error of kappa against Brenner (1961)"
+set title "{title}"
 set xlabel 'gap delta/a'; set ylabel 'error (%)'
-plot '{data}' index 0 using 1:2 with linespoints lc 1 dt 2 title 'd/h = 4, resolved', \\
-     '{data}' index 0 using 1:3 with linespoints lc 1 title 'd/h = 4, with lubrication', \\
-     '{data}' index 1 using 1:2 with linespoints lc 2 dt 2 title 'd/h = 8, resolved', \\
-     '{data}' index 1 using 1:3 with linespoints lc 2 title 'd/h = 8, with lubrication', \\
+plot {curves}, \\
      0 with lines lc rgb 'gray' notitle
 """)
 

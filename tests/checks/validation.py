@@ -9,7 +9,8 @@ Usage: validation.py OUTPUT_DIR MODE REF TOL
              velocity): 2D  F / (mu U) = REF (Sangani & Acrivos 1982),
                         3D  K = F / (6 pi mu a U) = REF (Zick & Homsy 1982); within TOL.
   wall       sphere moving at prescribed speed U toward a wall (Stokes): the drag
-             correction kappa = F / (6 pi mu a U) = REF (Brenner 1961); within TOL.
+             correction kappa = F / (6 pi mu a U) = REF (Brenner 1961); within TOL. F is
+             the resolved force plus the contact force (the lubrication correction).
 """
 import math
 import sys
@@ -39,7 +40,7 @@ if mode == "array":
     name = "F/(mu U)" if dim == 2 else "K = F/(6 pi mu a U)"
 elif mode == "wall":
     U = abs(float(entry[4].split(",")[1]))
-    value = abs(last["fy"]) / (6 * math.pi * mu * radius * U)
+    value = abs(last["fy"] + last["contact_fy"]) / (6 * math.pi * mu * radius * U)
     name = "kappa = F/(6 pi mu a U)"
 else:
     sys.exit(f"unknown mode {mode}")
