@@ -3,14 +3,15 @@
 'Lubrication'). Runs prm/validation/wall.prm (a = 1, U = 1, mu = 1, steady Stokes in one
 step) with Lubrication/Enabled = true at gaps delta/a = 0.03 ... 1 and particle
 refinement levels 3 and 4 (d/h = 4, 8; --levels 3 4 5 adds d/h = 16: 455 k DoFs and about
-14 GB per run with the direct solver), with a time step of 1e-5 so that the sphere moves
+14 GB per run with the direct solver). The time step is 1e-5, so that the sphere moves
 0.001 % of its radius during the step (the resolved force sees the gap at the start of the
-step, the correction at its end) and the density 1e-9 (alpha = 1e-4, as in the prm). Each run reports the resolved force (particles.csv fy)
-and the correction (contact_fy) separately, so one run gives kappa = F / (6 pi mu a U) with
-and without the correction, and the shift s: the gap widening delta + s at which Brenner's
-kappa equals the resolved one (the 'auto' Gap shift is fitted to it). The reference is
-Brenner's exact series (J. Fluid Mech. 1961), summed here. Writes doc/lubrication_wall.csv
-and doc/lubrication_wall.png.
+step, the correction at its end), and the density 1e-9 keeps alpha = 1e-4 as in the prm.
+Each run reports the resolved force (particles.csv fy) and the correction (contact_fy)
+separately, so one run gives kappa = F / (6 pi mu a U) with and without the correction,
+and the shift s: the gap widening delta + s at which Brenner's kappa equals the resolved
+one (the 'auto' Gap shift is fitted to it). The reference is Brenner's exact series
+(J. Fluid Mech. 1961), summed here. Writes doc/lubrication_wall.csv and
+doc/lubrication_wall.png.
 
 --dimension 2 runs the same scene with a cylinder (per unit length; kappa = F/(mu U)). No
 exact solution exists in 2D, so the reference is the resolved force of the same scene at
@@ -18,8 +19,8 @@ exact solution exists in 2D, so the reference is the resolved force of the same 
 the shift s solves resolved = reference - (C(delta) - C(delta + s)) for the leading term
 C(g) = 3 sqrt(2) pi (a/g)^(3/2). Writes doc/lubrication_wall_2d.csv and .png.
 
-Regenerate (from the top of the repository, after scripts/build.sh; about 15 and 10 min on
-2 cores):
+Regenerate (from the top of the repository, after scripts/build.sh; about 12 min for 3D
+levels 3 4, 45 min with 5, 1 min for 2D):
     /usr/bin/python3 benchmarks/lubrication_wall.py [--executable PATH] [--work DIR]
         [--levels 3 4] [--dimension 2 [--reference-level 8]]
 """
@@ -34,6 +35,11 @@ TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 DOC = os.path.join(TOP, "doc")
 GAPS = {3: (0.03, 0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0), 2: (0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0)}
+
+
+def cell_size(levels):
+    """The finest cell edge: wall.prm's base cells of 4a halved per refinement level."""
+    return 16 / 4 / 2 ** levels
 
 
 def brenner(delta):
@@ -107,7 +113,7 @@ def main():
         references = {delta: run(args, base, args.reference_level, delta)[0] for delta in GAPS[2]}
     rows = []
     for levels in args.levels:
-        h = 16 / 4 / 2 ** levels
+        h = cell_size(levels)
         for delta in GAPS[args.dimension]:
             resolved, correction = run(args, base, levels, delta)
             if args.dimension == 3:
@@ -119,7 +125,8 @@ def main():
                          f"{100 * (resolved / ref - 1):+.1f}", f"{shift:.3f}",
                          f"{correction:.4f}", f"{100 * ((resolved + correction) / ref - 1):+.1f}"])
             print(" ".join(str(c) for c in rows[-1]), flush=True)
-    reference = "Brenner kappa" if args.dimension == 3 else f"reference (d/h = {2 ** (args.reference_level - 1)})"
+    reference_dh = f"{2 / cell_size(args.reference_level):g}"
+    reference = "Brenner kappa" if args.dimension == 3 else f"reference (d/h = {reference_dh})"
     header = ["d/h", "delta/a", "gap/h", reference, "resolved", "error %", "shift s/a",
               "correction", "error with correction %"]
     stem = os.path.join(DOC, "lubrication_wall" + ("" if args.dimension == 3 else "_2d"))
@@ -130,18 +137,18 @@ def main():
     data = os.path.join(args.work, f"lubrication_wall_{args.dimension}d.dat")
     with open(data, "w") as f:
         for levels in args.levels:
-            dh = f"{2 / (16 / 4 / 2 ** levels):g}"
+            dh = f"{2 / cell_size(levels):g}"
             f.write(f'"d/h = {dh}"\n')
             for r in rows:
                 if r[0] == dh:
                     f.write(f"{r[1]} {r[5]} {r[8]}\n")
             f.write("\n\n")
     curves = ", \\\n     ".join(
-        f"'{data}' index {i} using 1:2 with linespoints lc {i + 1} dt 2 title 'd/h = {2 ** (l - 1)}, resolved', "
-        f"'{data}' index {i} using 1:3 with linespoints lc {i + 1} title 'd/h = {2 ** (l - 1)}, with lubrication'"
+        f"'{data}' index {i} using 1:2 with linespoints lc {i + 1} dt 2 title 'd/h = {2 / cell_size(l):g}, resolved', "
+        f"'{data}' index {i} using 1:3 with linespoints lc {i + 1} title 'd/h = {2 / cell_size(l):g}, with lubrication'"
         for i, l in enumerate(args.levels))
     title = ("Sphere approaching a wall: error of kappa against Brenner (1961)" if args.dimension == 3
-             else f"Cylinder approaching a wall: error against d/h = {2 ** (args.reference_level - 1)}")
+             else f"Cylinder approaching a wall: error against d/h = {reference_dh}")
     subprocess.run(["gnuplot"], check=False, text=True, input=f"""
 set terminal pngcairo size 800,550; set output '{stem}.png'
 set logscale x; set grid; set key right bottom
