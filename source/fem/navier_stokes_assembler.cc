@@ -68,6 +68,15 @@ namespace fdparticle
                       "and its penalties then no longer change with dt, so a time-step "
                       "study sees the scheme's own order (BDF2: 2) and a step halved by "
                       "recovery solves the same discrete constraint (doc/method.md §4).");
+    prm.declare_entry("Pairing viscous weight", "10", Patterns::Anything(),
+                      "c >= 0: the pairing over ball k weighs lambda.v with kappa = alpha + "
+                      "c mu/R_k^2 instead of alpha, in the rigidity constraint, the force and "
+                      "torque read from lambda and the fluid penalty. The rigid mode of "
+                      "lambda that carries the force is then about F/kappa, bounded in slow "
+                      "steps (alpha R^2/mu small), so two balls whose cut cells touch keep "
+                      "their own rigid motions. 0: the seed's pairing (alpha alone); two "
+                      "such balls then move as one in slow steps (doc/method.md §4, "
+                      "'Pairing viscous weight').");
     prm.leave_subsection();
     CutCellPenalties<dim>::declare_parameters(prm);
     InteriorPressure<dim>::declare_parameters(prm);
@@ -79,6 +88,8 @@ namespace fdparticle
     prm.enter_subsection("Multiplier");
     pairing_time_step =
       ParameterTools::get_non_negative(prm, "Pairing time step", "Multiplier/Pairing time step");
+    pairing_viscous_weight = ParameterTools::get_non_negative(prm, "Pairing viscous weight",
+                                                              "Multiplier/Pairing viscous weight");
     prm.leave_subsection();
     cut_cell_penalties.parse_parameters(prm);
     interior_pressure.parse_parameters(prm);
@@ -128,11 +139,12 @@ namespace fdparticle
     std::unique_ptr<FEValues<dim>> fe_cell_specific, pressure_cell_specific;
     Vector<double> local_solution(fe.n_dofs_per_cell()), local_history(fe.n_dofs_per_cell());
 
-    // α of the pairing <λ, v> (doc/method.md §0); the fluid's own ρ c0 u stays in the momentum rows.
+    // α of the pairing <λ, v> (doc/method.md §0), to which each ball adds c μ/R²
+    // (AssemblyScratch::pairing_weight); the fluid's own ρ c0 u stays in the momentum rows.
     const double alpha =
       (pairing_time_step > 0 ? 1.5 * fluid.density / pairing_time_step : fluid.density * c[0]);
     const unsigned int        n = fe.n_dofs_per_cell();
-    AssemblyScratch<dim>      s(fe, c, alpha, with_matrix);
+    AssemblyScratch<dim>      s(fe, c, alpha, pairing_viscous_weight * fluid.viscosity, with_matrix);
     AssemblyCopy<dim>         copy(n, particles.size());
     std::vector<types::global_dof_index> dof_indices(n);
     typename CutCellQuadrature<dim>::CellRule rule;

@@ -8,8 +8,8 @@ mesh, 6 steps, Global refinements 0-3, about 10 s) and checks what the tool wrot
   - study.csv has the columns run, dofs, wall_seconds, qoi, error (and the varied entry,
     newton_iterations, peak_memory_mb, cells) and one row per run, all 'ok';
   - DoFs grow with refinement, QoIs are finite and negative (the disk falls), the finest
-    run is the reference (error 0), the other errors are finite, positive and decrease
-    with refinement;
+    run is the reference (error 0), the other errors are finite and positive, the
+    coarsest the largest and the finest at most a third of it;
   - fits.csv holds one group whose fitted order is a finite positive number, and study.md
     shows it;
   - error_vs_dofs.png and error_vs_wall.png exist and are PNG files of some size.
@@ -80,8 +80,11 @@ def main():
           f"the finest run is the reference (error {errors[-1]})")
     coarse = errors[:-1]
     check(all(math.isfinite(e) and e > 0 for e in coarse), f"errors finite and positive: {coarse}")
-    check(all(b < a for a, b in zip(coarse, coarse[1:])),
-          f"errors decrease with refinement: {coarse}")
+    # Not each step: with R/h = 0.8 ... 3.2 the error oscillates by about 0.3 % of vy with
+    # the disk's place in the cells (levels 0-4 on 2026-11-25: |vy| 0.011972, 0.011640,
+    # 0.011706, 0.011631, 0.011675), which is smaller than the coarsest error.
+    check(coarse[0] == max(coarse) and coarse[-1] < coarse[0] / 3,
+          f"the coarsest error is the largest and the finest at most a third of it: {coarse}")
     rel = [num(r, "relative_error") for r in rows[:-1]]
     check(all(abs(r_ - e / abs(qoi[-1])) <= 1e-12 for r_, e in zip(rel, coarse)),
           "relative_error = error / |reference|")

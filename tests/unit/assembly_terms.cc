@@ -116,7 +116,7 @@ namespace
     {
       particles.set_unknowns(y);
       const unsigned int   n = fe.n_dofs_per_cell(), nq = fv.n_quadrature_points;
-      AssemblyScratch<dim> s(fe, c, alpha, with_matrix);
+      AssemblyScratch<dim> s(fe, c, alpha, viscous_pairing, with_matrix);
       AssemblyCopy<dim>    copy(n, particles.size());
       s.kind = kind;
       s.cut_particle = 0;
@@ -209,6 +209,9 @@ namespace
 
     const std::array<double, 3> c{{1.5 / 0.05, -2 / 0.05, 0.5 / 0.05}}; // BDF2, Δt = 0.05
     const double                alpha = 1.3 * 1.5 / 0.05;
+    /// c μ of the pairing weight κ = α + c μ/R² (c = 10, the default, at the fluid's
+    /// μ = 1): κ ≠ α in every term.
+    const double                viscous_pairing = 10;
     Fluid<dim>                  fluid;
     ParticleSet<dim>            particles;
     FESystem<dim>               fe;

@@ -115,6 +115,7 @@ namespace fdparticle
     const CutCellQuadrature<dim> &quadrature;
     MappingQ<dim>                 mapping{1};
     double                        pairing_time_step = 0.0; // 0: α = ρ c0 of the current step
+    double                        pairing_viscous_weight = 0.0; // c of κ = α + c μ/R²
 
     FluidMomentum<dim>     fluid_momentum;
     InteriorPressure<dim>  interior_pressure;

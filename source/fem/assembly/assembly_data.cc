@@ -4,9 +4,11 @@ namespace fdparticle
 {
   template <int dim>
   AssemblyScratch<dim>::AssemblyScratch(const FESystem<dim> &fe, const std::array<double, 3> &c,
-                                        const double alpha, const bool with_matrix)
+                                        const double alpha, const double viscous_pairing,
+                                        const bool with_matrix)
     : c(c)
     , alpha(alpha)
+    , viscous_pairing(viscous_pairing)
     , with_matrix(with_matrix)
     , component(fe.n_dofs_per_cell())
     , scalar_function(fe.n_dofs_per_cell())

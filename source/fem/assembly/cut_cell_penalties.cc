@@ -9,9 +9,10 @@ namespace fdparticle
   void CutCellPenalties<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Multiplier");
-    prm.declare_entry("Fluid penalty", "0.01", Patterns::Anything(),
-                      "s >= 0 in the term s*alpha^2/(alpha + mu/R^2)*int(lambda.eta) over the fluid part of cut "
-                      "cells (the seed's weak lambda = 0 in the fluid, 3.18a). It keeps the "
+    prm.declare_entry("Fluid penalty", "0.004", Patterns::Anything(),
+                      "s >= 0 in the term s*kappa^2/(alpha + mu/R^2)*int(lambda.eta) over the fluid "
+                      "part of cut cells, kappa the pairing weight (Pairing viscous weight); "
+                      "the seed's weak lambda = 0 in the fluid, 3.18a. It keeps the "
                       "rows of multipliers that barely meet a particle well posed.");
     prm.declare_entry("Strain penalty", "0.15", Patterns::Anything(),
                       "s_e >= 0 in the term s_e*mu*int(2 eps(lambda):eps(eta)) over the fluid "
@@ -69,17 +70,19 @@ namespace fdparticle
                                                            const unsigned int nearest_surface,
                                                            const double       JxW) const
   {
-    const double mu = fluid.viscosity, alpha = s.alpha;
+    const double mu = fluid.viscosity;
     // Optional ramp with the cell's particle fraction θ (Penalty ramp): without it the
     // penalties switch on at full strength when a cell starts to be cut.
     const double ramp = (penalty_ramp > 0 ? std::min(1.0, s.particle_fraction / penalty_ramp) : 1.0);
-    // Weak λ = 0 on the fluid part of a cut cell (seed 3.18a), weighted by α²/(α + μ/R²).
-    // The rigid mode of λ carries the particle's force through α∫λ, so it grows like 1/α;
-    // a weight that does not vanish like α² for α ≪ μ/R² lets the particle leak in
-    // proportion to Δt (weight α + μ/R²: settling 10x too fast at Δt = 1). For α ≫ μ/R²
-    // the weight is sα, a fixed fraction of the pairing (doc/method.md, "Fluid penalty").
+    // Weak λ = 0 on the fluid part of a cut cell (seed 3.18a), weighted by κ²/(α + μ/R²).
+    // The rigid mode of λ carries the particle's force through κ∫λ, so it grows like 1/κ;
+    // the weight must scale like κ² where κ ≪ μ/R² (only with the seed's κ = α, c = 0)
+    // or the particle leaks in proportion to Δt (weight α + μ/R²: settling 10x too fast
+    // at Δt = 1). For α ≫ μ/R² it is sκ, a fixed fraction of the pairing
+    // (doc/method.md §4, "Fluid penalty" and "Pairing viscous weight").
     const double R = particles[nearest_surface].radius;
-    const double fluid_weight = ramp * fluid_penalty * alpha * alpha / (alpha + mu / (R * R)) * JxW;
+    const double kappa = s.pairing_weight(R);
+    const double fluid_weight = ramp * fluid_penalty * kappa * kappa / (s.alpha + mu / (R * R)) * JxW;
     // Strain penalty s_e μ (2ε(λ), ε(η)): softens the rigidity of λ DoFs that live mostly
     // in the fluid (without it the cut cells lock, the particle looks O(h) larger) and is
     // blind to λ's rigid modes, ε(V + θ × r) = 0. Only in cells that own particle points:
@@ -116,7 +119,7 @@ namespace fdparticle
     add_gram(n_fluid, dim * nf, weighted.data() + L.column(1, 0), nc, derivatives.data());
     const auto D = [&](const unsigned int d, const unsigned int a, const unsigned int e,
                        const unsigned int b) { return derivatives[(d * nf + a) * dim * nf + e * nf + b]; };
-    // s μ α²/(α + μ/R²) δ ψ_a ψ_b + s_e μ (δ ∇ψ_a·∇ψ_b + ∂_cb ψ_a ∂_ca ψ_b)
+    // s κ²/(α + μ/R²) δ ψ_a ψ_b + s_e μ (δ ∇ψ_a·∇ψ_b + ∂_cb ψ_a ∂_ca ψ_b)
     for (unsigned int ca = 0; ca < dim; ++ca)
       for (unsigned int cb = 0; cb < dim; ++cb)
         for (unsigned int a = 0; a < nf; ++a)

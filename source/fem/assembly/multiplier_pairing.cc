@@ -14,7 +14,9 @@ namespace fdparticle
     if (k < 0)
       return;
     using RB = RigidBody<dim>;
-    const double                     mu = fluid.viscosity, alpha = s.alpha, JxW = s.JxW;
+    const Particle<dim> &            P = particles[k];
+    const double                     mu = fluid.viscosity, JxW = s.JxW;
+    const double                     kappa = s.pairing_weight(P.radius);
     const auto &                     N = s.N;
     const auto &                     dN = s.dN;
     const std::vector<unsigned int> &comp = s.component;
@@ -23,24 +25,23 @@ namespace fdparticle
     const Tensor<2, dim> &           gu = s.grad_u[s.q];
 
     // Residual: the rigidity (F3) in P_k, and the −<λ, v> term of the momentum equation.
-    const Particle<dim> &P = particles[k];
     const Tensor<1, dim> r = s.x - P.geometry_center;
     const Tensor<1, dim> du = s.u[s.q] - P.velocity - RB::cross(P.omega, r);
     const Tensor<2, dim> dgu = gu - RB::rotation_gradient(P.omega);
     for (const unsigned int i : s.velocity_dofs)
-      copy.rhs(i) -= (alpha * l[comp[i]] * N[i] + mu * (gl[comp[i]] * dN[i])) * JxW;
+      copy.rhs(i) -= (kappa * l[comp[i]] * N[i] + mu * (gl[comp[i]] * dN[i])) * JxW;
     for (const unsigned int a : s.multiplier_dofs)
-      copy.rhs(a) += (alpha * du[comp[a]] * N[a] + mu * (dgu[comp[a]] * dN[a])) * JxW;
+      copy.rhs(a) += (kappa * du[comp[a]] * N[a] + mu * (dgu[comp[a]] * dN[a])) * JxW;
 
     // The integrals of (F4)–(F5) and of the reported force and torque.
     ParticleIntegrals<dim> &I = copy.integrals[k];
-    I.lambda_force += alpha * l * JxW;
+    I.lambda_force += kappa * l * JxW;
     for (unsigned int j = 0; j < 3; ++j)
       {
         Tensor<1, 3> e;
         e[j] = 1;
         I.lambda_torque[j] +=
-          (alpha * (l * RB::cross(e, r)) + mu * scalar_product(gl, RB::rotation_gradient(e))) * JxW;
+          (kappa * (l * RB::cross(e, r)) + mu * scalar_product(gl, RB::rotation_gradient(e))) * JxW;
       }
     I.curl_u += RB::curl(gu) * JxW;
     I.volume += JxW;
@@ -63,12 +64,12 @@ namespace fdparticle
     for (const unsigned int a : s.multiplier_dofs)
       {
         const unsigned int ca = comp[a];
-        B(a, ca) -= alpha * N[a] * JxW;
-        C(a, ca) += alpha * N[a] * JxW;
+        B(a, ca) -= kappa * N[a] * JxW;
+        C(a, ca) += kappa * N[a] * JxW;
         for (unsigned int j = 0; j < n_rot; ++j)
           {
             const double pairing =
-              (alpha * N[a] * rotation_velocity[j][ca] + mu * (rotation_gradient[j][ca] * dN[a])) * JxW;
+              (kappa * N[a] * rotation_velocity[j][ca] + mu * (rotation_gradient[j][ca] * dN[a])) * JxW;
             B(a, dim + j) -= pairing;
             if (particles.closure() == AngularVelocityClosure::torque_balance)
               C(a, dim + j) += pairing;
@@ -92,21 +93,22 @@ namespace fdparticle
     if (!s.has_particle)
       return;
     // The pairing between λ and u, antisymmetric in sign, over the points inside particles:
-    // Σ_q JxW (α ψ_s φ_t + μ ∇ψ_s·∇φ_t). λ and u share their scalar functions (ψ = φ), so it
-    // is the Gram matrix of the rows (√(α JxW) φ, √(μ JxW) ∂_0 φ, …), each feature a row of
+    // Σ_q JxW (κ_k ψ_s φ_t + μ ∇ψ_s·∇φ_t), κ_k of the point's owner k. λ and u share their scalar functions (ψ = φ), so it
+    // is the Gram matrix of the rows (√(κ_k JxW) φ, √(μ JxW) ∂_0 φ, …), each feature a row of
     // its own (a row of CellShapes read as dim + 1 rows of n_functions).
     const CellShapes<dim> &L = s.multiplier_shapes, &V = s.velocity_shapes;
     const unsigned int     nf = V.n_functions(), nc = V.n_columns();
     Assert(L.n_functions() == nf, ExcInternalError());
-    const double         root_alpha = std::sqrt(s.alpha), root_mu = std::sqrt(fluid.viscosity);
+    const double         root_mu = std::sqrt(fluid.viscosity);
     std::vector<double> &weighted = copy.weighted;
     weighted.clear();
     for (unsigned int q = 0; q < V.n_points(); ++q)
       if (s.owners[q] >= 0)
         {
           const double root = std::sqrt(s.weights[q]);
+          const double root_kappa = std::sqrt(s.pairing_weight(particles[s.owners[q]].radius));
           for (unsigned int k = 0; k < nc; ++k)
-            weighted.push_back((k < nf ? root_alpha : root_mu) * root * V.row(q)[k]);
+            weighted.push_back((k < nf ? root_kappa : root_mu) * root * V.row(q)[k]);
         }
     std::vector<double> pairing(nf * nf, 0.0);
     add_gram(weighted.size() / nf, nf, weighted.data(), nf, pairing.data());

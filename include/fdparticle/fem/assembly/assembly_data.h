@@ -29,7 +29,13 @@ namespace fdparticle
   struct AssemblyScratch
   {
     AssemblyScratch(const FESystem<dim> &fe, const std::array<double, 3> &c, const double alpha,
-                    const bool with_matrix);
+                    const double viscous_pairing, const bool with_matrix);
+
+    /// κ = α + c μ/R² of the pairing <λ, v> over a ball of radius R (doc/method.md §0, §4).
+    double pairing_weight(const double radius) const
+    {
+      return alpha + viscous_pairing / (radius * radius);
+    }
 
     /// The cell: read the shape functions at all its points from the FEValues of the
     /// scalar element of u and λ (one FE_Q serves both) and of the pressure's, and
@@ -43,7 +49,8 @@ namespace fdparticle
 
     // The step.
     std::array<double, 3> c;           ///< BDF weights: ∂_t u ≈ c0 u + c1 u^n + c2 u^{n−1}
-    double                alpha;       ///< α of the pairing <λ, v> (doc/method.md §0)
+    double                alpha;       ///< α = ρ_f c0 of the step (doc/method.md §0)
+    double                viscous_pairing; ///< c μ of the pairing weight κ = α + c μ/R²
     bool                  with_matrix; ///< assemble the Jacobian as well as the residual
 
     // The local DoFs by field, the vector component (0..dim−1) of each, and the index of

@@ -14,7 +14,7 @@ namespace fdparticle
   /**
    * The two penalties on the fluid part of cut cells, added to the rigidity rows (F3)
    * (doc/method.md §3, §4):
-   *   fluid penalty   s α²/(α + μ/R²) ∫ λ·η           (the seed's weak λ = 0 in the fluid)
+   *   fluid penalty   s κ²/(α + μ/R²) ∫ λ·η           (the seed's weak λ = 0 in the fluid)
    *   strain penalty  s_e μ ∫ 2 ε(λ):ε(η)              (only in cells owning particle points)
    * both scaled by θ/θ_0 below the penalty ramp θ_0 of the cell's particle fraction θ.
    * Parameters Multiplier/Fluid penalty, Strain penalty, Penalty ramp.

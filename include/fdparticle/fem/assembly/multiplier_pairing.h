@@ -9,7 +9,7 @@ namespace fdparticle
 {
   /**
    * The coupling of fluid and particle at the points inside particle P_k (doc/method.md
-   * §0, §3), with <λ, v>_P = ∫_P α λ·v + μ ∇λ:∇v:
+   * §0, §3), with <λ, v>_P = ∫_P κ λ·v + μ ∇λ:∇v, κ = α + c μ/R² (§4, AssemblyScratch):
    *   momentum   − <λ, v>_{P_k}                      (in (F1))
    *   rigidity   <η, u − V_k − ω_k × r>_{P_k}         (F3)
    * and, for a free particle, the border of the Newton system: ∂(F3)/∂(V, ω) (column B)

@@ -15,7 +15,7 @@ namespace fdparticle
   template <int dim>
   struct ParticleIntegrals
   {
-    Tensor<1, dim> lambda_force;  ///< <λ, e_i>_P = ∫_P α λ_i
+    Tensor<1, dim> lambda_force;  ///< <λ, e_i>_P = ∫_P κ λ_i
     Tensor<1, 3>   lambda_torque; ///< <λ, e_j × r>_P
     Tensor<1, 3>   curl_u;        ///< ∫_P ∇ × u
     double         volume = 0;    ///< ∫_P 1 by the cut-cell rule
