@@ -347,7 +347,7 @@ diameter over the cell size at its surface. Wall time is the solver's own (stati
 on a shared 2-core machine with another run beside it. How forces and torques come from λ:
 doc/method.md §9 (the force on a particle is what its multiplier applies to the fluid,
 plus the fictitious fluid's inertia and buoyancy; at steady state with a fixed particle
-it equals −α∫λ, which the periodic arrays check against the exact balance F = f·|cell|).
+it equals −κ∫λ, κ the pairing weight of doc/method.md §3, which the periodic arrays check against the exact balance F = f·|cell|).
 
 """
 

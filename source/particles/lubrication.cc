@@ -18,9 +18,9 @@ namespace fdparticle
                         "Lubrication).");
       prm.declare_entry("Gap shift", "auto", Patterns::Anything(),
                         "s_0, the shift s of a gap below a cell (a length; s tapers from s_0 "
-                        "at contact to 0 at Resolved gap), or 'auto': c a*^0.7 h^0.3 for the "
-                        "reduced radius a* and the finest cell edge h, c = 0.106 in 3D and "
-                        "0.034 in 2D, fitted to a ball approaching a wall at d/h = 4, 8, 16.");
+                        "at contact to 0 at Resolved gap), or 'auto': c a* for the reduced "
+                        "radius a*, c = 0.033 in 3D and 0.018 in 2D, fitted to a ball "
+                        "approaching a wall at d/h = 4, 8, 16.");
       prm.declare_entry("Resolved gap", "auto", Patterns::Anything(),
                         "Gap below which the correction acts (a length), or 'auto': three "
                         "finest cell edges, from where the resolved squeeze force has "
@@ -52,10 +52,9 @@ namespace fdparticle
                                     const double finest_cell_size)
   {
     this->domain = domain;
-    viscosity              = fluid.viscosity;
-    this->finest_cell_size = finest_cell_size;
-    resolved_gap           = resolved_entry.value_or(resolved_gap_cells * finest_cell_size);
-    search                 = std::make_unique<PairSearch<dim>>(domain);
+    viscosity    = fluid.viscosity;
+    resolved_gap = resolved_entry.value_or(resolved_gap_cells * finest_cell_size);
+    search       = std::make_unique<PairSearch<dim>>(domain);
   }
 
   template <int dim>
@@ -67,8 +66,7 @@ namespace fdparticle
   template <int dim>
   double Lubrication<dim>::gap_shift(const double reduced_radius) const
   {
-    return shift_entry.value_or(shift_coefficient * std::pow(reduced_radius, 1 - shift_exponent) *
-                                std::pow(finest_cell_size, shift_exponent));
+    return shift_entry.value_or(shift_fraction * reduced_radius);
   }
 
   template <int dim>

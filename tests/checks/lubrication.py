@@ -4,8 +4,8 @@ The expected force is computed here from the centres in particles.csv (the end-o
 positions, where the code evaluates it): for cylinders the leading lubrication term per
 unit length is 3 sqrt(2) pi mu U (a*/g)^(3/2) (a cylinder of radius a* at gap g from a
 plane; a* = a1 a2 / (a1 + a2) for two cylinders). The resolved flow carries that term at a
-gap widened by s = s_0 (1 - g/g_r), s_0 = 0.034 a*^0.7 h^0.3 for the finest cell edge h,
-so the correction is C(g) - C(g + s) below the resolved gap g_r = 3h, zero above."""
+gap widened by s = s_0 (1 - g/g_r), s_0 = 0.018 a*, so the correction is C(g) - C(g + s)
+below the resolved gap g_r = 3h (h the finest cell edge), zero above."""
 import math
 import sys
 from testlib import table, parameters, check, finish
@@ -20,7 +20,7 @@ g_r = 3 * h
 
 def correction(a_star, g):
     C = lambda x: 3 * math.sqrt(2) * math.pi * mu * (a_star / x) ** 1.5
-    s = 0.034 * a_star ** 0.7 * h ** 0.3 * (1 - g / g_r)
+    s = 0.018 * a_star * (1 - g / g_r)
     return (C(g) - C(g + s)) * U if g < g_r else 0.0
 
 

@@ -61,17 +61,15 @@ namespace fdparticle
                        const double normal_velocity) const;
 
     /**
-     * The 'auto' shift s_0 = shift_coefficient a*^(1 − shift_exponent) h^shift_exponent
-     * for the finest cell edge h, fitted to the resolved force on a ball approaching a wall
-     * (benchmarks/lubrication_wall.py, doc/particles.md). 3D: a sphere at d/h = 4, 8, 16
-     * and gaps 0.03a … a; the corrected drag is then within 3.5 % of Brenner's exact
-     * series at all of them, and fitted without one mesh it predicts that mesh within
-     * 5.4 %. 2D: a cylinder at d/h = 4, 8, 16 against the resolved force at d/h = 128;
-     * within 13 % (the sub-cell force of a cylinder scatters with where the gap sits in
-     * its cell), from 53 % low without the correction.
+     * The 'auto' shift s_0 = shift_fraction a*, fitted to the resolved force on a ball
+     * approaching a wall (benchmarks/lubrication_wall.py, doc/particles.md). Below a cell
+     * the measured shift hardly depends on the gap or on the mesh (3D: 0.02–0.04a at
+     * d/h = 4, 8 and 16; 2D: 0.01–0.03a), so one fraction of the radius serves every
+     * mesh. 3D: a sphere against Brenner's exact series, within 6 % at gaps 0.03a … a;
+     * 2D: a cylinder against the resolved force at d/h = 128, within 12 % (the
+     * sub-cell force scatters with where the gap sits in its cell).
      */
-    static constexpr double shift_coefficient = (dim == 3 ? 0.106 : 0.034);
-    static constexpr double shift_exponent    = 0.3;
+    static constexpr double shift_fraction = (dim == 3 ? 0.033 : 0.018);
     /// The resolved gap of 'auto', in finest cell edges: from three cells up the resolved
     /// drag has converged (within 1–3 % of Brenner's, with or without the correction).
     static constexpr double resolved_gap_cells = 3.0;
@@ -82,7 +80,7 @@ namespace fdparticle
   private:
     bool                  on = false;
     std::optional<double> resolved_entry, minimum_entry, shift_entry;
-    double                resolved_gap = 0, viscosity = 0, finest_cell_size = 0;
+    double                resolved_gap = 0, viscosity = 0;
     Domain<dim>           domain;
     std::unique_ptr<PairSearch<dim>> search;
 

@@ -1,0 +1,136 @@
+#!/usr/bin/python3
+"""The lubrication correction between two equal spheres approaching each other (doc/
+particles.md, 'Lubrication'). Two spheres (a = 1, mu = 1) at the centre of the box of
+prm/validation/wall.prm move toward each other along y at U = 1 each, steady Stokes in
+one step (as benchmarks/lubrication_wall.py runs the wall), with Lubrication/Enabled =
+true, at gaps g/a = 0.03 ... 1 between their surfaces and particle refinement levels 3
+(d/h = 4; --levels 3 4 adds d/h = 8, about 300 k DoFs and 6 GB per run).
+
+By symmetry the mid-plane carries no normal velocity and no shear stress, so each sphere
+moves as one approaching a free surface at the half-gap g/2, for which Brenner (J. Fluid
+Mech. 1961) gives the exact drag factor lambda = F/(6 pi mu a U); it is summed here. The
+box's walls, 7a from the spheres, add to it: the single sphere of the same box at gap 1a
+from the floor is 1.3 times Brenner's unbounded value in the wall benchmark, but the two
+spheres' opposite Stokeslets cancel in the far field, so the pair feels the box much less
+(compare the largest gap). The run reports the resolved force (particles.csv fy) and the
+correction (contact_fy), so it gives lambda with and without the correction, and the
+shift s: the gap widening g + s at which the free-surface lambda equals the resolved one,
+to be compared with the 'auto' Gap shift of the pair, s_0 = c a* with a* = a/2.
+Writes doc/lubrication_pair.csv and doc/lubrication_pair.png.
+
+Regenerate (from the top of the repository, after scripts/build.sh; about 4 min for
+--levels 3, 25 min with 4):
+    /usr/bin/python3 benchmarks/lubrication_pair.py [--executable PATH] [--work DIR]
+        [--levels 3]
+"""
+import argparse
+import csv
+import math
+import os
+import subprocess
+from importlib.machinery import SourceFileLoader
+
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
+WALL = SourceFileLoader("lubrication_wall", os.path.join(TOP, "benchmarks", "lubrication_wall.py")).load_module()
+DOC = os.path.join(TOP, "doc")
+GAPS = (0.03, 0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0)
+CENTRE = 8.0  # the mid-plane of the 16a box
+
+
+def free_surface(delta):
+    """lambda of a sphere moving normal to a plane free surface at gap delta/a
+    (Brenner 1961)."""
+    alpha = math.acosh(1 + delta)
+    total = 0.0
+    for n in range(1, 100000):
+        if (2 * n + 1) * alpha > 600:  # the terms have converged long before cosh overflows
+            break
+        num = 4 * math.cosh((n + 0.5) * alpha) ** 2 + (2 * n + 1) ** 2 * math.sinh(alpha) ** 2
+        den = 2 * math.sinh((2 * n + 1) * alpha) - (2 * n + 1) * math.sinh(2 * alpha)
+        total += n * (n + 1) / ((2 * n - 1) * (2 * n + 3)) * (num / den - 1)
+    return 4.0 / 3.0 * math.sinh(alpha) * total
+
+
+def effective_gap(value):
+    """The gap g between the spheres at which the free-surface lambda at g/2 equals value."""
+    low, high = 1e-6, 100.0
+    for _ in range(200):
+        middle = math.sqrt(low * high)
+        low, high = (middle, high) if free_surface(middle / 2) > value else (low, middle)
+    return math.sqrt(low * high)
+
+
+def run(args, base, levels, gap):
+    """Resolved force and correction, in units of lambda, of the upper sphere at the gap."""
+    name = f"pair_lv{levels}_gap{gap}"
+    out = os.path.join(args.work, name)
+    prm = os.path.join(args.work, name + ".prm")
+    offset = 1 + gap / 2
+    scene = {"Refinement/Particle refinement levels": levels, "Fluid/Density": 1e-9,
+             "Time/Time step": 1e-5, "Time/End time": 1e-5, "Output/Directory": out,
+             "Particles/Particles": f"0, {CENTRE - offset}, 0 : 1 : 1 : prescribed : 0, 1, 0; "
+                                    f"0, {CENTRE + offset}, 0 : 1 : 1 : prescribed : 0, -1, 0"}
+    with open(prm, "w") as f:
+        f.write(STUDY.apply_overrides(base, scene) + "subsection Lubrication\n  set Enabled = true\nend\n")
+    with open(os.path.join(args.work, name + ".log"), "w") as log:
+        subprocess.run([args.executable, prm], stdout=log, stderr=subprocess.STDOUT, check=True)
+    with open(os.path.join(out, "particles.csv")) as f:
+        upper = [r for r in csv.DictReader(f) if r["id"] == "1"][-1]
+    scale = 6 * math.pi
+    return float(upper["fy"]) / scale, float(upper["contact_fy"]) / scale
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
+    p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "lubrication_pair"))
+    p.add_argument("--levels", type=int, nargs="+", default=[3],
+                   help="particle refinement levels (d/h = 2^(levels - 1))")
+    args = p.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    with open(os.path.join(TOP, "prm", "validation", "wall.prm")) as f:
+        base = f.read()
+    rows = []
+    for levels in args.levels:
+        h = WALL.cell_size(levels)
+        for gap in GAPS:
+            resolved, correction = run(args, base, levels, gap)
+            ref = free_surface(gap / 2)
+            shift = effective_gap(resolved) - gap
+            rows.append([f"{2 / h:g}", gap, f"{gap / h:.2g}", f"{ref:.4f}", f"{resolved:.4f}",
+                         f"{100 * (resolved / ref - 1):+.1f}", f"{shift:.3f}",
+                         f"{correction:.4f}", f"{100 * ((resolved + correction) / ref - 1):+.1f}"])
+            print(" ".join(str(c) for c in rows[-1]), flush=True)
+    header = ["d/h", "gap/a", "gap/h", "Brenner lambda", "resolved", "error %", "shift s/a",
+              "correction", "error with correction %"]
+    stem = os.path.join(DOC, "lubrication_pair")
+    with open(stem + ".csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        w.writerows(rows)
+    data = os.path.join(args.work, "lubrication_pair.dat")
+    with open(data, "w") as f:
+        for levels in args.levels:
+            dh = f"{2 / WALL.cell_size(levels):g}"
+            f.write(f'"d/h = {dh}"\n')
+            for r in rows:
+                if r[0] == dh:
+                    f.write(f"{r[1]} {r[5]} {r[8]}\n")
+            f.write("\n\n")
+    curves = ", \\\n     ".join(
+        f"'{data}' index {i} using 1:2 with linespoints lc {i + 1} dt 2 title 'd/h = {2 / WALL.cell_size(l):g}, resolved', "
+        f"'{data}' index {i} using 1:3 with linespoints lc {i + 1} title 'd/h = {2 / WALL.cell_size(l):g}, with lubrication'"
+        for i, l in enumerate(args.levels))
+    subprocess.run(["gnuplot"], check=False, text=True, input=f"""
+set terminal pngcairo size 800,550; set output '{stem}.png'
+set logscale x; set grid; set key right bottom
+set title "Two spheres approaching each other: error of lambda against Brenner (1961)"
+set xlabel 'gap g/a between the spheres'; set ylabel 'error (%)'
+plot {curves}, \\
+     0 with lines lc rgb 'gray' notitle
+""")
+
+
+if __name__ == "__main__":
+    main()
