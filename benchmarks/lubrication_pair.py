@@ -3,7 +3,7 @@
 particles.md, 'Lubrication'). Two spheres (a = 1, mu = 1) at the centre of the box of
 prm/validation/wall.prm move toward each other along y at U = 1 each, steady Stokes in
 one step (as benchmarks/lubrication_wall.py runs the wall), with Lubrication/Enabled =
-true, at gaps g/a = 0.03 ... 1 between their surfaces and particle refinement levels 3
+true, at gaps g/a = 0.03 ... 1 between their surfaces (2D: from 0.05) and particle refinement levels 3
 (d/h = 4; --levels 3 4 adds d/h = 8, about 300 k DoFs and 6 GB per run).
 
 By symmetry the mid-plane carries no normal velocity and no shear stress, so each sphere
@@ -15,13 +15,19 @@ spheres' opposite Stokeslets cancel in the far field, so the pair feels the box 
 (compare the largest gap). The run reports the resolved force (particles.csv fy) and the
 correction (contact_fy), so it gives lambda with and without the correction, and the
 shift s: the gap widening g + s at which the free-surface lambda equals the resolved one,
-to be compared with the 'auto' Gap shift of the pair, s_0 = c a* with a* = a/2.
-Writes doc/lubrication_pair.csv and doc/lubrication_pair.png.
+to be compared with the 'auto' Gap shift of a pair. Writes doc/lubrication_pair.csv and
+doc/lubrication_pair.png.
+
+--dimension 2 runs the same scene with two cylinders (per unit length; lambda = F/(mu U)).
+No exact solution exists in 2D, so the reference is the resolved force of the same scene
+at --reference-level (default 8, d/h = 128), and the shift s solves resolved = reference -
+2 (C(g) - C(g + s)) for the leading term C(g) = 3 sqrt(2) pi (a*/g)^(3/2), a* = a/2, at
+the relative velocity 2U. Writes doc/lubrication_pair_2d.csv and .png.
 
 Regenerate (from the top of the repository, after scripts/build.sh; about 4 min for
---levels 3, 25 min with 4):
+--levels 3, 25 min with 4; 2D: 2 min):
     /usr/bin/python3 benchmarks/lubrication_pair.py [--executable PATH] [--work DIR]
-        [--levels 3]
+        [--levels 3] [--dimension 2 [--reference-level 8]]
 """
 import argparse
 import csv
@@ -34,7 +40,8 @@ TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 WALL = SourceFileLoader("lubrication_wall", os.path.join(TOP, "benchmarks", "lubrication_wall.py")).load_module()
 DOC = os.path.join(TOP, "doc")
-GAPS = (0.03, 0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0)
+# 2D starts at 0.05a, where the d/h = 128 reference still has three cells in the gap.
+GAPS = {3: (0.03, 0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0), 2: (0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0)}
 CENTRE = 8.0  # the mid-plane of the 16a box
 
 
@@ -61,9 +68,17 @@ def effective_gap(value):
     return math.sqrt(low * high)
 
 
+def cylinder_shift(gap, resolved, reference):
+    """s with resolved = reference - 2 (C(gap) - C(gap + s)), C the 2D leading term for
+    a* = a/2."""
+    C = lambda g: 2 * 3 * math.sqrt(2) * math.pi * (0.5 / g) ** 1.5
+    wide = C(gap) - reference + resolved
+    return 0.5 * (2 * 3 * math.sqrt(2) * math.pi / wide) ** (2 / 3) - gap if wide > 0 else float("nan")
+
+
 def run(args, base, levels, gap):
-    """Resolved force and correction, in units of lambda, of the upper sphere at the gap."""
-    name = f"pair_lv{levels}_gap{gap}"
+    """Resolved force and correction, in units of lambda, of the upper ball at the gap."""
+    name = f"pair_{args.dimension}d_lv{levels}_gap{gap}"
     out = os.path.join(args.work, name)
     prm = os.path.join(args.work, name + ".prm")
     offset = 1 + gap / 2
@@ -71,13 +86,18 @@ def run(args, base, levels, gap):
              "Time/Time step": 1e-5, "Time/End time": 1e-5, "Output/Directory": out,
              "Particles/Particles": f"0, {CENTRE - offset}, 0 : 1 : 1 : prescribed : 0, 1, 0; "
                                     f"0, {CENTRE + offset}, 0 : 1 : 1 : prescribed : 0, -1, 0"}
+    if args.dimension == 2:
+        scene.update({"Dimension": 2, "Gravity": "0, 0", "Geometry/Lower corner": "-8, 0",
+                      "Geometry/Upper corner": "8, 16", "Geometry/Subdivisions": "4, 4",
+                      "Particles/Particles": f"0, {CENTRE - offset} : 1 : 1 : prescribed : 0, 1; "
+                                             f"0, {CENTRE + offset} : 1 : 1 : prescribed : 0, -1"})
     with open(prm, "w") as f:
         f.write(STUDY.apply_overrides(base, scene) + "subsection Lubrication\n  set Enabled = true\nend\n")
     with open(os.path.join(args.work, name + ".log"), "w") as log:
         subprocess.run([args.executable, prm], stdout=log, stderr=subprocess.STDOUT, check=True)
     with open(os.path.join(out, "particles.csv")) as f:
         upper = [r for r in csv.DictReader(f) if r["id"] == "1"][-1]
-    scale = 6 * math.pi
+    scale = 6 * math.pi if args.dimension == 3 else 1.0
     return float(upper["fy"]) / scale, float(upper["contact_fy"]) / scale
 
 
@@ -87,29 +107,38 @@ def main():
     p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "lubrication_pair"))
     p.add_argument("--levels", type=int, nargs="+", default=[3],
                    help="particle refinement levels (d/h = 2^(levels - 1))")
+    p.add_argument("--dimension", type=int, choices=(2, 3), default=3)
+    p.add_argument("--reference-level", type=int, default=8, help="2D: level of the reference")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     with open(os.path.join(TOP, "prm", "validation", "wall.prm")) as f:
         base = f.read()
+    if args.dimension == 2:
+        references = {gap: run(args, base, args.reference_level, gap)[0] for gap in GAPS[2]}
     rows = []
     for levels in args.levels:
         h = WALL.cell_size(levels)
-        for gap in GAPS:
+        for gap in GAPS[args.dimension]:
             resolved, correction = run(args, base, levels, gap)
-            ref = free_surface(gap / 2)
-            shift = effective_gap(resolved) - gap
+            if args.dimension == 3:
+                ref, shift = free_surface(gap / 2), effective_gap(resolved) - gap
+            else:
+                ref = references[gap]
+                shift = cylinder_shift(gap, resolved, ref)
             rows.append([f"{2 / h:g}", gap, f"{gap / h:.2g}", f"{ref:.4f}", f"{resolved:.4f}",
                          f"{100 * (resolved / ref - 1):+.1f}", f"{shift:.3f}",
                          f"{correction:.4f}", f"{100 * ((resolved + correction) / ref - 1):+.1f}"])
             print(" ".join(str(c) for c in rows[-1]), flush=True)
-    header = ["d/h", "gap/a", "gap/h", "Brenner lambda", "resolved", "error %", "shift s/a",
+    reference_dh = f"{2 / WALL.cell_size(args.reference_level):g}"
+    reference = "Brenner lambda" if args.dimension == 3 else f"reference (d/h = {reference_dh})"
+    header = ["d/h", "gap/a", "gap/h", reference, "resolved", "error %", "shift s/a",
               "correction", "error with correction %"]
-    stem = os.path.join(DOC, "lubrication_pair")
+    stem = os.path.join(DOC, "lubrication_pair" + ("" if args.dimension == 3 else "_2d"))
     with open(stem + ".csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(header)
         w.writerows(rows)
-    data = os.path.join(args.work, "lubrication_pair.dat")
+    data = os.path.join(args.work, f"lubrication_pair_{args.dimension}d.dat")
     with open(data, "w") as f:
         for levels in args.levels:
             dh = f"{2 / WALL.cell_size(levels):g}"
@@ -122,10 +151,12 @@ def main():
         f"'{data}' index {i} using 1:2 with linespoints lc {i + 1} dt 2 title 'd/h = {2 / WALL.cell_size(l):g}, resolved', "
         f"'{data}' index {i} using 1:3 with linespoints lc {i + 1} title 'd/h = {2 / WALL.cell_size(l):g}, with lubrication'"
         for i, l in enumerate(args.levels))
+    title = ("Two spheres approaching each other: error of lambda against Brenner (1961)"
+             if args.dimension == 3 else f"Two cylinders approaching each other: error against d/h = {reference_dh}")
     subprocess.run(["gnuplot"], check=False, text=True, input=f"""
 set terminal pngcairo size 800,550; set output '{stem}.png'
 set logscale x; set grid; set key right bottom
-set title "Two spheres approaching each other: error of lambda against Brenner (1961)"
+set title "{title}"
 set xlabel 'gap g/a between the spheres'; set ylabel 'error (%)'
 plot {curves}, \\
      0 with lines lc rgb 'gray' notitle

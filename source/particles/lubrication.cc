@@ -20,7 +20,9 @@ namespace fdparticle
                         "s_0, the shift s of a gap below a cell (a length; s tapers from s_0 "
                         "at contact to 0 at Resolved gap), or 'auto': c a* for the reduced "
                         "radius a*, c = 0.033 in 3D and 0.018 in 2D, fitted to a ball "
-                        "approaching a wall at d/h = 4, 8, 16.");
+                        "approaching a wall at d/h = 4, 8, 16. Between two balls the "
+                        "resolved flow of a sub-cell gap is further off than at a wall, and "
+                        "'auto' under-corrects it (doc/particles.md, Lubrication, Pairs).");
       prm.declare_entry("Resolved gap", "auto", Patterns::Anything(),
                         "Gap below which the correction acts (a length), or 'auto': three "
                         "finest cell edges, from where the resolved squeeze force has "
