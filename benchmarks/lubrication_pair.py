@@ -29,7 +29,6 @@ Regenerate (from the top of the repository, after scripts/build.sh; about 4 min 
     /usr/bin/python3 benchmarks/lubrication_pair.py [--executable PATH] [--work DIR]
         [--levels 3] [--dimension 2 [--reference-level 8]]
 """
-import argparse
 import csv
 import math
 import os
@@ -57,15 +56,6 @@ def free_surface(delta):
         den = 2 * math.sinh((2 * n + 1) * alpha) - (2 * n + 1) * math.sinh(2 * alpha)
         total += n * (n + 1) / ((2 * n - 1) * (2 * n + 3)) * (num / den - 1)
     return 4.0 / 3.0 * math.sinh(alpha) * total
-
-
-def effective_gap(value):
-    """The gap g between the spheres at which the free-surface lambda at g/2 equals value."""
-    low, high = 1e-6, 100.0
-    for _ in range(200):
-        middle = math.sqrt(low * high)
-        low, high = (middle, high) if free_surface(middle / 2) > value else (low, middle)
-    return math.sqrt(low * high)
 
 
 def cylinder_shift(gap, resolved, reference):
@@ -102,17 +92,7 @@ def run(args, base, levels, gap):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
-    p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "lubrication_pair"))
-    p.add_argument("--levels", type=int, nargs="+", default=[3],
-                   help="particle refinement levels (d/h = 2^(levels - 1))")
-    p.add_argument("--dimension", type=int, choices=(2, 3), default=3)
-    p.add_argument("--reference-level", type=int, default=8, help="2D: level of the reference")
-    args = p.parse_args()
-    os.makedirs(args.work, exist_ok=True)
-    with open(os.path.join(TOP, "prm", "validation", "wall.prm")) as f:
-        base = f.read()
+    args, base = WALL.arguments(__doc__, "lubrication_pair", [3])
     if args.dimension == 2:
         references = {gap: run(args, base, args.reference_level, gap)[0] for gap in GAPS[2]}
     rows = []
@@ -121,46 +101,22 @@ def main():
         for gap in GAPS[args.dimension]:
             resolved, correction = run(args, base, levels, gap)
             if args.dimension == 3:
-                ref, shift = free_surface(gap / 2), effective_gap(resolved) - gap
+                ref = free_surface(gap / 2)
+                shift = WALL.effective_gap(resolved, lambda g: free_surface(g / 2)) - gap
             else:
                 ref = references[gap]
                 shift = cylinder_shift(gap, resolved, ref)
-            rows.append([f"{2 / h:g}", gap, f"{gap / h:.2g}", f"{ref:.4f}", f"{resolved:.4f}",
-                         f"{100 * (resolved / ref - 1):+.1f}", f"{shift:.3f}",
-                         f"{correction:.4f}", f"{100 * ((resolved + correction) / ref - 1):+.1f}"])
-            print(" ".join(str(c) for c in rows[-1]), flush=True)
+            rows.append(WALL.table_row(h, gap, ref, resolved, shift, correction))
     reference_dh = f"{2 / WALL.cell_size(args.reference_level):g}"
     reference = "Brenner lambda" if args.dimension == 3 else f"reference (d/h = {reference_dh})"
     header = ["d/h", "gap/a", "gap/h", reference, "resolved", "error %", "shift s/a",
               "correction", "error with correction %"]
     stem = os.path.join(DOC, "lubrication_pair" + ("" if args.dimension == 3 else "_2d"))
-    with open(stem + ".csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        w.writerows(rows)
-    data = os.path.join(args.work, f"lubrication_pair_{args.dimension}d.dat")
-    with open(data, "w") as f:
-        for levels in args.levels:
-            dh = f"{2 / WALL.cell_size(levels):g}"
-            f.write(f'"d/h = {dh}"\n')
-            for r in rows:
-                if r[0] == dh:
-                    f.write(f"{r[1]} {r[5]} {r[8]}\n")
-            f.write("\n\n")
-    curves = ", \\\n     ".join(
-        f"'{data}' index {i} using 1:2 with linespoints lc {i + 1} dt 2 title 'd/h = {2 / WALL.cell_size(l):g}, resolved', "
-        f"'{data}' index {i} using 1:3 with linespoints lc {i + 1} title 'd/h = {2 / WALL.cell_size(l):g}, with lubrication'"
-        for i, l in enumerate(args.levels))
     title = ("Two spheres approaching each other: error of lambda against Brenner (1961)"
              if args.dimension == 3 else f"Two cylinders approaching each other: error against d/h = {reference_dh}")
-    subprocess.run(["gnuplot"], check=False, text=True, input=f"""
-set terminal pngcairo size 800,550; set output '{stem}.png'
-set logscale x; set grid; set key right bottom
-set title "{title}"
-set xlabel 'gap g/a between the spheres'; set ylabel 'error (%)'
-plot {curves}, \\
-     0 with lines lc rgb 'gray' notitle
-""")
+    WALL.write_results(stem, header, rows, args.levels,
+                       os.path.join(args.work, f"lubrication_pair_{args.dimension}d.dat"), title,
+                       "gap g/a between the balls")
 
 
 if __name__ == "__main__":

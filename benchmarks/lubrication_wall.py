@@ -55,12 +55,13 @@ def brenner(delta):
     return 4.0 / 3.0 * math.sinh(alpha) * total
 
 
-def effective_gap(kappa):
-    """The gap at which Brenner's kappa equals kappa (kappa falls as the gap grows)."""
+def effective_gap(kappa, law=brenner):
+    """The gap at which law (default Brenner's wall kappa, any drag that falls as the gap
+    grows) equals kappa."""
     low, high = 1e-6, 100.0
     for _ in range(200):
         middle = math.sqrt(low * high)
-        low, high = (middle, high) if brenner(middle) > kappa else (low, middle)
+        low, high = (middle, high) if law(middle) > kappa else (low, middle)
     return math.sqrt(low * high)
 
 
@@ -97,18 +98,25 @@ def cylinder_shift(delta, resolved, reference):
     return (3 * math.sqrt(2) * math.pi / wide) ** (2 / 3) - delta if wide > 0 else float("nan")
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def arguments(description, name, levels):
+    """The command line of this benchmark and of benchmarks/lubrication_pair.py (work
+    directory benchmarks/work/NAME, default particle refinement LEVELS), and the base scene
+    prm/validation/wall.prm."""
+    p = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
-    p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "lubrication_wall"))
-    p.add_argument("--levels", type=int, nargs="+", default=[3, 4],
+    p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", name))
+    p.add_argument("--levels", type=int, nargs="+", default=levels,
                    help="particle refinement levels (d/h = 2^(levels - 1))")
     p.add_argument("--dimension", type=int, choices=(2, 3), default=3)
     p.add_argument("--reference-level", type=int, default=8, help="2D: level of the reference")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     with open(os.path.join(TOP, "prm", "validation", "wall.prm")) as f:
-        base = f.read()
+        return args, f.read()
+
+
+def main():
+    args, base = arguments(__doc__, "lubrication_wall", [3, 4])
     if args.dimension == 2:
         references = {delta: run(args, base, args.reference_level, delta)[0] for delta in GAPS[2]}
     rows = []
@@ -121,23 +129,39 @@ def main():
             else:
                 ref = references[delta]
                 shift = cylinder_shift(delta, resolved, ref)
-            rows.append([f"{2 / h:g}", delta, f"{delta / h:.2g}", f"{ref:.4f}", f"{resolved:.4f}",
-                         f"{100 * (resolved / ref - 1):+.1f}", f"{shift:.3f}",
-                         f"{correction:.4f}", f"{100 * ((resolved + correction) / ref - 1):+.1f}"])
-            print(" ".join(str(c) for c in rows[-1]), flush=True)
+            rows.append(table_row(h, delta, ref, resolved, shift, correction))
     reference_dh = f"{2 / cell_size(args.reference_level):g}"
     reference = "Brenner kappa" if args.dimension == 3 else f"reference (d/h = {reference_dh})"
     header = ["d/h", "delta/a", "gap/h", reference, "resolved", "error %", "shift s/a",
               "correction", "error with correction %"]
     stem = os.path.join(DOC, "lubrication_wall" + ("" if args.dimension == 3 else "_2d"))
+    title = ("Sphere approaching a wall: error of kappa against Brenner (1961)" if args.dimension == 3
+             else f"Cylinder approaching a wall: error against d/h = {reference_dh}")
+    write_results(stem, header, rows, args.levels, os.path.join(args.work, f"lubrication_wall_{args.dimension}d.dat"),
+                  title, "gap delta/a")
+
+
+def table_row(h, gap, reference, resolved, shift, correction):
+    """One row of the table (and of the progress printed): d/h, the gap in radii and in
+    cells, the reference, the resolved force, its error, the shift, the correction and the
+    error with it. Shared with benchmarks/lubrication_pair.py."""
+    row = [f"{2 / h:g}", gap, f"{gap / h:.2g}", f"{reference:.4f}", f"{resolved:.4f}",
+           f"{100 * (resolved / reference - 1):+.1f}", f"{shift:.3f}",
+           f"{correction:.4f}", f"{100 * ((resolved + correction) / reference - 1):+.1f}"]
+    print(" ".join(str(c) for c in row), flush=True)
+    return row
+
+
+def write_results(stem, header, rows, levels, data, title, xlabel):
+    """STEM.csv, and STEM.png: the error with and without the correction against the gap,
+    one pair of curves per mesh (through the gnuplot data file DATA)."""
     with open(stem + ".csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(header)
         w.writerows(rows)
-    data = os.path.join(args.work, f"lubrication_wall_{args.dimension}d.dat")
     with open(data, "w") as f:
-        for levels in args.levels:
-            dh = f"{2 / cell_size(levels):g}"
+        for level in levels:
+            dh = f"{2 / cell_size(level):g}"
             f.write(f'"d/h = {dh}"\n')
             for r in rows:
                 if r[0] == dh:
@@ -146,14 +170,12 @@ def main():
     curves = ", \\\n     ".join(
         f"'{data}' index {i} using 1:2 with linespoints lc {i + 1} dt 2 title 'd/h = {2 / cell_size(l):g}, resolved', "
         f"'{data}' index {i} using 1:3 with linespoints lc {i + 1} title 'd/h = {2 / cell_size(l):g}, with lubrication'"
-        for i, l in enumerate(args.levels))
-    title = ("Sphere approaching a wall: error of kappa against Brenner (1961)" if args.dimension == 3
-             else f"Cylinder approaching a wall: error against d/h = {reference_dh}")
+        for i, l in enumerate(levels))
     subprocess.run(["gnuplot"], check=False, text=True, input=f"""
 set terminal pngcairo size 800,550; set output '{stem}.png'
 set logscale x; set grid; set key right bottom
 set title "{title}"
-set xlabel 'gap delta/a'; set ylabel 'error (%)'
+set xlabel '{xlabel}'; set ylabel 'error (%)'
 plot {curves}, \\
      0 with lines lc rgb 'gray' notitle
 """)
