@@ -93,9 +93,10 @@ namespace fdparticle
     if (!s.has_particle)
       return;
     // The pairing between λ and u, antisymmetric in sign, over the points inside particles:
-    // Σ_q JxW (κ_k ψ_s φ_t + μ ∇ψ_s·∇φ_t), κ_k of the point's owner k. λ and u share their scalar functions (ψ = φ), so it
-    // is the Gram matrix of the rows (√(κ_k JxW) φ, √(μ JxW) ∂_0 φ, …), each feature a row of
-    // its own (a row of CellShapes read as dim + 1 rows of n_functions).
+    // Σ_q JxW (κ_k ψ_s φ_t + μ ∇ψ_s·∇φ_t), κ_k of the point's owner k. λ and u share their
+    // scalar functions (ψ = φ), so it is the Gram matrix of the rows (√(κ_k JxW) φ,
+    // √(μ JxW) ∂_0 φ, …), each feature a row of its own (a row of CellShapes read as dim + 1
+    // rows of n_functions).
     const CellShapes<dim> &L = s.multiplier_shapes, &V = s.velocity_shapes;
     const unsigned int     nf = V.n_functions(), nc = V.n_columns();
     Assert(L.n_functions() == nf, ExcInternalError());
