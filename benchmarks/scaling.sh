@@ -8,8 +8,9 @@
 # Each run is one process on RANKS ranks (default 1); compare the ratios within one run of
 # the script (the machine is shared). Writes doc/scaling.csv, doc/scaling_time.png,
 # doc/scaling_memory.png and doc/scaling_iterations.png (FGMRES iterations against mesh
-# size). Solvers: direct, iterative (the defaults) and iterative-patch (with the cut-cell
-# patch solve, Cut cell patch layers = 1); SOLVERS="iterative" runs only that one.
+# size). Solvers: direct, iterative (the defaults: the cut-cell patch and the cheap
+# iterations first) and iterative-inner (no patch, always the inner solve: Cut cell patch
+# layers = -1, Cheap iterations = 0); SOLVERS="iterative" runs only that one.
 # PLOT_ONLY=1 redraws the plots from doc/scaling.csv.
 # Usage: bash benchmarks/scaling.sh     (~10 min on 2 cores with the default SIZES="4 6 8")
 set -uo pipefail
@@ -18,7 +19,7 @@ exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/scaling}"
 sizes="${SIZES:-4 6 8}"
 ranks="${RANKS:-1}"
-solvers="${SOLVERS:-direct iterative iterative-patch}"
+solvers="${SOLVERS:-direct iterative iterative-inner}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
 export OMPI_MCA_mpi_yield_when_idle=1
@@ -47,8 +48,9 @@ for name in sediment array; do
       d="$work/$name-$n-$solver"
       mkdir -p "$d"
       { "$name" "$n"
-        printf 'subsection Solver\n  set Linear solver = %s\n' "${solver%-patch}"
-        [ "$solver" = iterative-patch ] && printf '  set Cut cell patch layers = 1\n'
+        printf 'subsection Solver\n  set Linear solver = %s\n' "${solver%-inner}"
+        [ "$solver" = iterative-inner ] &&
+          printf '  set Cut cell patch layers = -1\n  set Cheap iterations = 0\n'
         printf 'end\n'
         printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$d/out"
       } > "$d/scene.prm"
@@ -78,7 +80,7 @@ set logscale xy
 set xlabel "finite-element unknowns"
 set ylabel "$label"
 set key top left
-plot for [s in "sediment array"] for [v in "direct iterative iterative-patch"] \
+plot for [s in "sediment array"] for [v in "direct iterative iterative-inner"] \
   sprintf("< grep '^%s,[0-9]*,%s,' $csv", s, v) using 4:$col with linespoints title s." ".v
 GNUPLOT
 done
@@ -91,8 +93,8 @@ set logscale x
 set xlabel "finite-element unknowns"
 set ylabel "iterations of the step"
 set key top left
-plot for [s in "sediment array"] for [v in "iterative iterative-patch"] \
+plot for [s in "sediment array"] for [v in "iterative iterative-inner"] \
   sprintf("< grep '^%s,[0-9]*,%s,' $csv", s, v) using 4:5 with linespoints title s." ".v." FGMRES", \
-  for [s in "sediment array"] for [v in "iterative iterative-patch"] \
+  for [s in "sediment array"] for [v in "iterative iterative-inner"] \
   sprintf("< grep '^%s,[0-9]*,%s,' $csv", s, v) using 4:(\$6/10) with linespoints dashtype 2 title s." ".v." inner / 10"
 GNUPLOT

@@ -26,7 +26,9 @@ namespace fdparticle
    * block upper triangular in the pressure p and the rest w = (u, λ, y):
    *
    *     P = [ J_w   J_wp ]      J_w: the (u, λ, y) rows and columns of the Newton matrix,
-   *         [ 0     S_p  ]      solved by an inner FGMRES to inner_tolerance
+   *         [ 0     S_p  ]      solved by an inner FGMRES to inner_tolerance, or in the
+   *                             cheap form (inner_solve false) one application of the
+   *                             inner preconditioner below
    *
    * S_p⁻¹, the inverse of the pressure Schur complement, has two terms (Cahouet and
    * Chabard). The viscous one is cell-local: the inverse of A's own pressure block (the
@@ -40,7 +42,8 @@ namespace fdparticle
    *
    * p and λ are jointly undetermined inside a particle (only the penalties fix them), and
    * an approximation of the λ block alone spoils that balance: the inner solve of the
-   * (u, λ, y) block keeps it. The inner preconditioner is block triangular too:
+   * (u, λ, y) block keeps it, and so does the cut-cell patch where it reaches (the cheap
+   * form relies on it). The inner preconditioner is block triangular too:
    *
    *     [ K   A_uλ ]      K = A_uu: one AMG V-cycle (ML)
    *     [ 0   S_λ  ]      S_λ: A_λλ + M, with the particle unknowns y, below
@@ -63,8 +66,11 @@ namespace fdparticle
     /// Relative tolerance and iteration limit of the inner solve for (u, λ, y).
     double       inner_tolerance      = 1e-3;
     unsigned int max_inner_iterations = 100;
+    /// false: the cheap form, one application of the inner preconditioner instead of the
+    /// inner solve (IterativeSolver tries it first).
+    bool inner_solve = true;
     /// Rings of cells around the cut cells in the patch solve (CutCellPatch); −1: none.
-    int patch_layers = -1;
+    int patch_layers = 1;
     /// Only cut cells whose fluid part is at most this fraction seed the patch.
     double patch_fluid_fraction = 0.25;
 

@@ -27,6 +27,12 @@ namespace fdparticle
    * for later operators while it still converges quickly: a solve that needed more than
    * rebuild_growth times the iterations of the first solve with the current
    * preconditioner marks it for a rebuild at the next operator_changed().
+   *
+   * Each solve first tries cheap_iterations FGMRES iterations with the cheap form of the
+   * preconditioner (no inner solve, BlockPreconditioner::inner_solve off) and, if they do
+   * not reach the tolerance, continues from there with the inner solve (as ASPECT's
+   * Stokes solver does). A preconditioner whose cheap form failed once is used with the
+   * inner solve until it is rebuilt.
    */
   class IterativeSolver : public LinearSolver
   {
@@ -41,7 +47,8 @@ namespace fdparticle
                     TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y) override;
 
   private:
-    unsigned int max_iterations = 500;
+    unsigned int max_iterations   = 500;
+    unsigned int cheap_iterations = 100;
     unsigned int basis_size     = 50;
     bool         reuse          = true;
     bool         verbose        = false;
@@ -54,6 +61,8 @@ namespace fdparticle
     bool                              stale = true;
     /// Iterations of the first solve with the current preconditioner.
     unsigned int                      reference_iterations = 0;
+    /// Whether the cheap form of the current preconditioner failed to converge.
+    bool                              cheap_failed = false;
   };
 } // namespace fdparticle
 
