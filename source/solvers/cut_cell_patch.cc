@@ -4,6 +4,8 @@
 
 #include <Epetra_CrsMatrix.h>
 
+#include <string>
+
 namespace fdparticle
 {
   void CutCellPatch::clear()
@@ -132,9 +134,15 @@ namespace fdparticle
     factorization->umfpackControl()(UMFPACK_IRSTEP) = 0;
     factorization->umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_CHOLMOD;
     factorization->compute(matrix);
+    const int status = factorization->umfpackFactorizeReturncode();
+    AssertThrow(status != UMFPACK_ERROR_out_of_memory,
+                ExcMessage("The cut-cell patch of the iterative solver does not fit in memory "
+                           "(UMFPACK ran out): set Solver/Cut cell patch layers = -1, or use "
+                           "more MPI ranks."));
     AssertThrow(factorization->info() == Eigen::Success,
-                ExcMessage("The cut-cell patch of the iterative solver is singular: try "
-                           "Solver/Cut cell patch layers = -1."));
+                ExcMessage("The cut-cell patch of the iterative solver could not be factored "
+                           "(UMFPACK status " + std::to_string(status) +
+                           "; 1: singular): set Solver/Cut cell patch layers = -1."));
     work.resize(patch_rows.size());
   }
 
