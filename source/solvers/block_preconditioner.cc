@@ -390,24 +390,25 @@ namespace fdparticle
         // The cheap form: one application of the block triangle of J_w.
         vmult_rest(dst, inner_rhs);
         ++n_inner_iterations;
-        std::copy_n(values(pressure_part) + o_p, n_p, values(dst.block(0)) + o_p);
-        return;
       }
-    SolverControl control(max_inner_iterations, inner_tolerance * inner_rhs.l2_norm(), false,
-                          false);
-    SolverFGMRES<BlockVector> fgmres(control, SolverFGMRES<BlockVector>::AdditionalData(
-                                                max_inner_iterations));
-    dst = 0;
-    try
+    else
       {
-        fgmres.solve(inner_operator, dst, inner_rhs, inner_preconditioner);
+        SolverControl control(max_inner_iterations, inner_tolerance * inner_rhs.l2_norm(),
+                              false, false);
+        SolverFGMRES<BlockVector> fgmres(control, SolverFGMRES<BlockVector>::AdditionalData(
+                                                    max_inner_iterations));
+        dst = 0;
+        try
+          {
+            fgmres.solve(inner_operator, dst, inner_rhs, inner_preconditioner);
+          }
+        catch (const SolverControl::NoConvergence &)
+          {
+            // An inexact inner solve is still a preconditioner; the outer FGMRES, which
+            // allows one that changes, decides whether the whole solve converges.
+          }
+        n_inner_iterations += control.last_step();
       }
-    catch (const SolverControl::NoConvergence &)
-      {
-        // An inexact inner solve is still a preconditioner; the outer FGMRES, which
-        // allows one that changes, decides whether the whole solve converges.
-      }
-    n_inner_iterations += control.last_step();
     std::copy_n(values(pressure_part) + o_p, n_p, values(dst.block(0)) + o_p);
   }
 } // namespace fdparticle
