@@ -11,6 +11,7 @@
 #include <Epetra_Vector.h>
 
 #include <algorithm>
+#include <iostream>
 #include <map>
 
 namespace fdparticle
@@ -131,8 +132,23 @@ namespace fdparticle
     initialize_pressure_laplacian();
     initialize_particle_block();
     patch.clear();
-    if (patch_layers >= 0)
-      patch.initialize(*system, patch_layers, patch_fluid_fraction);
+    // A patch that cannot be factored on some rank is dropped on all of them: the
+    // preconditioner still works without it (the cheap form may then stall and hand over
+    // to the inner solve), and a smaller time step would not make it fit.
+    const std::string failure =
+      patch_layers >= 0 ? patch.initialize(*system, patch_layers, patch_fluid_fraction) : "";
+    if (Utilities::MPI::logical_or(!failure.empty(), comm))
+      {
+        if (!failure.empty() && !patch_failure_reported)
+          std::cerr << "  warning: the cut-cell patch of the iterative solver could not be "
+                       "factored on rank "
+                    << rank << " (" << failure
+                    << "); the solver goes on without it, with more iterations "
+                       "(Solver/Cut cell patch layers, doc/scaling.md)."
+                    << std::endl;
+        patch_failure_reported = true;
+        patch.clear();
+      }
     n_patch      = Utilities::MPI::sum<types::global_dof_index>(patch.size(), comm);
     patch_active = n_patch > 0;
     if (patch_active)

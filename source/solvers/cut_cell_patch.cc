@@ -15,8 +15,8 @@ namespace fdparticle
     matrix = Eigen::SparseMatrix<double>();
   }
 
-  void CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers,
-                                const double max_fluid_fraction)
+  std::string CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers,
+                                       const double max_fluid_fraction)
   {
     clear();
     using Blocks               = NewtonSystem::Blocks;
@@ -113,7 +113,7 @@ namespace fdparticle
           patch_rows.push_back(i);
         }
     if (patch_rows.empty())
-      return;
+      return "";
     std::vector<Eigen::Triplet<double>> entries;
     for (unsigned int r = 0; r < patch_rows.size(); ++r)
       {
@@ -131,19 +131,23 @@ namespace fdparticle
     matrix.resize(patch_rows.size(), patch_rows.size());
     matrix.setFromTriplets(entries.begin(), entries.end());
     factorization = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
-    factorization->umfpackControl()(UMFPACK_IRSTEP) = 0;
-    factorization->umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_CHOLMOD;
+    factorization->umfpackControl()(UMFPACK_IRSTEP)              = 0;
+    factorization->umfpackControl()(UMFPACK_STRATEGY)            = UMFPACK_STRATEGY_SYMMETRIC;
+    factorization->umfpackControl()(UMFPACK_ORDERING)            = UMFPACK_ORDERING_CHOLMOD;
+    factorization->umfpackControl()(UMFPACK_SYM_PIVOT_TOLERANCE) = pivot_tolerance;
+    factorization->umfpackControl()(UMFPACK_PIVOT_TOLERANCE)     = pivot_tolerance;
     factorization->compute(matrix);
-    const int status = factorization->umfpackFactorizeReturncode();
-    AssertThrow(status != UMFPACK_ERROR_out_of_memory,
-                ExcMessage("The cut-cell patch of the iterative solver does not fit in memory "
-                           "(UMFPACK ran out): set Solver/Cut cell patch layers = -1, or use "
-                           "more MPI ranks."));
-    AssertThrow(factorization->info() == Eigen::Success,
-                ExcMessage("The cut-cell patch of the iterative solver could not be factored "
-                           "(UMFPACK status " + std::to_string(status) +
-                           "; 1: singular): set Solver/Cut cell patch layers = -1."));
+    if (factorization->info() != Eigen::Success)
+      {
+        const int status = factorization->umfpackFactorizeReturncode();
+        clear();
+        return status == UMFPACK_ERROR_out_of_memory ? "UMFPACK ran out of memory" :
+               status == UMFPACK_WARNING_singular_matrix ?
+                                                       "UMFPACK found it singular" :
+                                                       "UMFPACK status " + std::to_string(status);
+      }
     work.resize(patch_rows.size());
+    return "";
   }
 
   void CutCellPatch::add_correction(TrilinosWrappers::MPI::Vector &      x,

@@ -165,6 +165,8 @@ namespace fdparticle
     /// The exact solve near the cut cells, and whether any rank has one.
     CutCellPatch patch;
     bool                    patch_active = false;
+    /// Whether a patch that could not be factored was reported (once per run).
+    bool patch_failure_reported = false;
     types::global_dof_index n_patch      = 0;
   };
 } // namespace fdparticle

@@ -9,6 +9,7 @@
 #include <Eigen/UmfPackSupport>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace fdparticle
@@ -38,9 +39,10 @@ namespace fdparticle
   public:
     /// Collect the patch of the current system and factor it: the cut cells whose fluid
     /// part is at most max_fluid_fraction of the cell, and `layers` rings of cells
-    /// beyond them.
-    void initialize(const NewtonSystem &system, const unsigned int layers,
-                    const double max_fluid_fraction);
+    /// beyond them. Returns why UMFPACK could not factor it (the patch is then empty), or
+    /// an empty string.
+    std::string initialize(const NewtonSystem &system, const unsigned int layers,
+                           const double max_fluid_fraction);
     void clear();
 
     /// x += R_patchᵀ A_patch⁻¹ R_patch r on the owned entries (A's layout).
@@ -50,6 +52,17 @@ namespace fdparticle
     unsigned int size() const { return patch_rows.size(); }
 
   private:
+    /// UMFPACK takes a diagonal pivot unless it is below this fraction of its column. The
+    /// patch is a saddle point: the multiplier rows inside a particle and the pressure rows
+    /// of fluid cells have (almost) nothing on the diagonal until the velocities they
+    /// couple to are eliminated. With UMFPACK's defaults (10⁻³, and its automatic choice of
+    /// the unsymmetric strategy) it rejected so many diagonal pivots that the fill outgrew
+    /// its memory on the 3D array at c = 0.125 and 10 cells per diameter (58 838 patch
+    /// unknowns); with 10⁻⁸ it took 3 554 off-diagonal pivots and 1.6 GB (measured on
+    /// 2026-11-25). Inside a preconditioner the lost accuracy is the outer FGMRES's to
+    /// correct.
+    static constexpr double pivot_tolerance = 1e-8;
+
     /// Local rows of A in the patch, in patch order.
     std::vector<unsigned int> patch_rows;
     /// UMFPACK's LU of the patch matrix. Without iterative refinement: the patch solve is
@@ -58,6 +71,8 @@ namespace fdparticle
     /// Ordered by CHOLMOD (the better of AMD and METIS's nested dissection): on the shell
     /// of the 3D sediment step at 116 k unknowns (10 846 in the patch) METIS won and the
     /// whole run needed 0.76 times the memory of AMD alone (measured on 2026-11-25).
+    /// The symmetric strategy (the ordering of A + Aᵀ, diagonal pivots preferred): the
+    /// patch matrix is structurally symmetric. See pivot_tolerance for the pivots.
     /// The patch matrix stays: UMFPACK's solve reads it (Eigen passes it on).
     Eigen::SparseMatrix<double>                                    matrix;
     std::unique_ptr<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>> factorization;
