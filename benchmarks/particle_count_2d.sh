@@ -50,24 +50,7 @@ subsection Output
 end
 PRM
   /usr/bin/time -f "%M" -o "$work/n$n.mem" "$exe" "$work/n$n.prm" > "$work/n$n.log"
-  /usr/bin/python3 - "$work" "$n" >> "$csv" <<'PY'
-import csv, re, sys
-work, n = sys.argv[1], sys.argv[2]
-log = open(f"{work}/n{n}.log").read()
-def section(name):
-    m = re.search(r"\|\s*" + name + r"\s*\|\s*\d+\s*\|\s*([0-9.]+)(m?s)", log)
-    return float(m.group(1)) / (1000 if m.group(2) == "ms" else 1) if m else 0.0
-rows = list(csv.DictReader(open(f"{work}/n{n}/statistics.csv")))
-steps = len(rows)
-unknowns = int(re.search(r"\+ (\d+) particle unknowns", log).group(1))
-dofs = int(rows[-1]["dofs"])
-total = sum(float(r["wall_seconds"]) for r in rows)
-newton = sum(int(r["nonlinear_iterations"]) for r in rows) / steps
-assembly = section("assemble system") + section("assemble residual")
-peak = int(open(f"{work}/n{n}.mem").read().split()[-1]) / 1024
-print(f"{n},{unknowns},{dofs},{steps},{newton:.2f},{total / steps:.3f},{assembly / steps:.3f},"
-      f"{section('solve') / steps:.3f},{peak:.0f}")
-PY
+  /usr/bin/python3 "$top/benchmarks/particle_count_row.py" "$work" "n$n" "$n" >> "$csv"
   tail -1 "$csv"
 done
 gnuplot <<GP

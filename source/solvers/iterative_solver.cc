@@ -43,8 +43,10 @@ namespace fdparticle
                         "iterations stop growing with refinement (the cell-by-cell pressure "
                         "approximation misses how a cell that a particle almost covers couples "
                         "to its neighbours) and the cheap form of the preconditioner converges "
-                        "on 3D scenes (Cheap iterations); the patch costs memory in proportion "
-                        "to the particles' volume in cells (doc/scaling.md).");
+                        "on 3D scenes (Cheap iterations). Its factors grow faster than its size "
+                        "(mostly the shell of cells around the particle surfaces): a patch that "
+                        "UMFPACK cannot factor is dropped with a warning and the solve goes on "
+                        "without it (doc/scaling.md).");
       prm.declare_entry("Cut cell patch fluid fraction", "0.25", Patterns::Double(0, 1),
                         "Iterative solver: only cut cells whose fluid part is at most this "
                         "fraction of the cell seed the cut-cell patch (with its rings): the "

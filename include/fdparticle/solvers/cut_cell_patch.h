@@ -26,8 +26,9 @@ namespace fdparticle
    * the cut cells that a particle almost covers and of the cells inside the particles
    * (where p and λ are jointly undetermined but for the penalties), the velocity and
    * multiplier DoFs of those cells, and `layers` more rings of cells grown through the
-   * matrix graph; everything outside is held fixed. It grows with the particles' volume
-   * in cells.
+   * matrix graph; everything outside is held fixed. Most of it is the shell around the
+   * particle surfaces: with particle-following refinement the interior is coarse (2 642
+   * of 58 838 patch unknowns on the 3D array at c = 0.125 and 10 cells per diameter).
    *
    * Each rank takes only its own DoFs (a restricted additive Schwarz across the ranks):
    * its patch matrix is local and factored by UMFPACK, so nothing is communicated.
