@@ -20,7 +20,7 @@ log = open(f"{work}/{name}.log").read()
 
 def section(title):
     """Seconds in one TimerOutput section of the log (0 if it did not run)."""
-    m = re.search(r"\|\s*" + title + r"\s*\|\s*\d+\s*\|\s*([0-9.]+)(m?s)", log)
+    m = re.search(r"\|\s*" + title + r"\s*\|\s*\d+\s*\|\s*([0-9.]+(?:e[+-]?\d+)?)(m?s)", log)
     return float(m.group(1)) / (1000 if m.group(2) == "ms" else 1) if m else 0.0
 
 

@@ -56,11 +56,11 @@ namespace fdparticle
     /// UMFPACK takes a diagonal pivot unless it is below this fraction of its column. The
     /// patch is a saddle point: the multiplier rows inside a particle and the pressure rows
     /// of fluid cells have (almost) nothing on the diagonal until the velocities they
-    /// couple to are eliminated. With UMFPACK's defaults (10⁻³, and its automatic choice of
-    /// the unsymmetric strategy) it rejected so many diagonal pivots that the fill outgrew
-    /// its memory on the 3D array at c = 0.125 and 10 cells per diameter (58 838 patch
-    /// unknowns); with 10⁻⁸ it took 3 554 off-diagonal pivots and 1.6 GB (measured on
-    /// 2026-11-25). Inside a preconditioner the lost accuracy is the outer FGMRES's to
+    /// couple to are eliminated. With UMFPACK's default tolerance (10⁻³), in its
+    /// automatic choice of the unsymmetric strategy and in the symmetric one, it rejected
+    /// so many diagonal pivots that the fill outgrew its memory on the 3D array at
+    /// c = 0.125 and 10 cells per diameter (58 838 patch unknowns); with 10⁻⁸ it took
+    /// 3 554 off-diagonal pivots and 1.6 GB (measured on 2026-11-25). Inside a preconditioner the lost accuracy is the outer FGMRES's to
     /// correct.
     static constexpr double pivot_tolerance = 1e-8;
 
