@@ -131,7 +131,6 @@ namespace fdparticle
     initialize_pressure_cells();
     initialize_pressure_laplacian();
     initialize_particle_block();
-    patch.clear();
     // A patch that cannot be factored on some rank is dropped on all of them: the
     // preconditioner still works without it (the cheap form may then stall and hand over
     // to the inner solve), and a smaller time step would not make it fit.

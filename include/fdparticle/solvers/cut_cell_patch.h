@@ -60,8 +60,8 @@ namespace fdparticle
     /// automatic choice of the unsymmetric strategy and in the symmetric one, it rejected
     /// so many diagonal pivots that the fill outgrew its memory on the 3D array at
     /// c = 0.125 and 10 cells per diameter (58 838 patch unknowns); with 10⁻⁸ it took
-    /// 3 554 off-diagonal pivots and 1.6 GB (measured on 2026-11-25). Inside a preconditioner the lost accuracy is the outer FGMRES's to
-    /// correct.
+    /// 3 554 off-diagonal pivots and 1.6 GB (measured on 2026-11-25). Inside a
+    /// preconditioner the lost accuracy is the outer FGMRES's to correct.
     static constexpr double pivot_tolerance = 1e-8;
 
     /// Local rows of A in the patch, in patch order.
