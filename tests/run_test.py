@@ -19,8 +19,9 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    one), on each number of ranks (or on N ranks only):
                                    particles.csv must agree, |a-b| <= ABS + REL*|b|
   # test-check: SCRIPT [ARGS]      run tests/SCRIPT OUTPUT_DIR [ARGS]; it exits non-zero on failure
-  # test-expect-output: N TEXT     the run on N ranks must print TEXT on stdout (an event
-                                   that the scene is built to cause, e.g. a repartition)
+  # test-expect-output: N TEXT     the run on N ranks must print TEXT on stdout or stderr
+                                   (an event that the scene is built to cause, e.g. a
+                                   repartition or a warning)
   # test-restart-at: T             also run to End time T with checkpoints, then resume
                                    (Checkpointing/Resume = true) to the End time of the
                                    prm, after mimicking a kill during the last checkpoint
@@ -326,8 +327,8 @@ def main():
         outputs.append(out_dir)
         if "test-expect-output" in d:
             on_ranks, expected = d["test-expect-output"].split(None, 1)
-            if int(on_ranks) == ranks and expected not in result.stdout:
-                failures.append(f"stdout on {ranks} rank(s) does not contain {expected!r}")
+            if int(on_ranks) == ranks and expected not in result.stdout + result.stderr:
+                failures.append(f"the output on {ranks} rank(s) does not contain {expected!r}")
 
         if "test-compare" in d:
             rel, abs_tol = (float(x) for x in d.get("test-tolerance", "1e-6 1e-10").split())

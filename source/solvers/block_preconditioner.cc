@@ -38,6 +38,7 @@ namespace fdparticle
     patch.clear();
     patch_active = false;
     n_patch      = 0;
+    max_patch_memory = 0;
     velocity_amg.clear();
     multiplier_amg.clear();
     pressure_amg.clear();
@@ -131,24 +132,27 @@ namespace fdparticle
     initialize_pressure_cells();
     initialize_pressure_laplacian();
     initialize_particle_block();
-    // A patch that cannot be factored on some rank is dropped on all of them: the
-    // preconditioner still works without it (the cheap form may then stall and hand over
-    // to the inner solve), and a smaller time step would not make it fit.
+    // A patch that is too large or cannot be factored on some rank is dropped on all of
+    // them: the preconditioner still works without it (the cheap form may then stall and
+    // hand over to the inner solve), and a smaller time step would not make it fit.
     const std::string failure =
-      patch_layers >= 0 ? patch.initialize(*system, patch_layers, patch_fluid_fraction) : "";
+      patch_layers >= 0 ?
+        patch.initialize(*system, patch_layers, patch_fluid_fraction, patch_memory_limit) :
+        "";
     if (Utilities::MPI::logical_or(!failure.empty(), comm))
       {
         if (!failure.empty() && !patch_failure_reported)
-          std::cerr << "  warning: the cut-cell patch of the iterative solver could not be "
+          std::cerr << "  warning: the cut-cell patch of the iterative solver was not "
                        "factored on rank "
                     << rank << " (" << failure
                     << "); the solver goes on without it, with more iterations "
-                       "(Solver/Cut cell patch layers, doc/scaling.md)."
+                       "(Solver/Cut cell patch memory, doc/scaling.md)."
                     << std::endl;
         patch_failure_reported = true;
         patch.clear();
       }
     n_patch      = Utilities::MPI::sum<types::global_dof_index>(patch.size(), comm);
+    max_patch_memory = Utilities::MPI::max(patch.memory(), comm);
     patch_active = n_patch > 0;
     if (patch_active)
       op->reinit_vector(patch_residual);

@@ -3,20 +3,27 @@
 #include <fdparticle/solvers/cut_cell_patch.h>
 
 #include <Epetra_CrsMatrix.h>
+#include <umfpack.h>
 
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 namespace fdparticle
 {
+  CutCellPatch::~CutCellPatch() { clear(); }
+
   void CutCellPatch::clear()
   {
     patch_rows.clear();
-    factorization.reset();
-    matrix = Eigen::SparseMatrix<double>();
+    if (numeric != nullptr)
+      umfpack_di_free_numeric(&numeric);
+    factor_memory = 0;
+    matrix        = Eigen::SparseMatrix<double>();
   }
 
   std::string CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers,
-                                       const double max_fluid_fraction)
+                                       const double max_fluid_fraction, const double memory_limit)
   {
     clear();
     using Blocks               = NewtonSystem::Blocks;
@@ -130,23 +137,47 @@ namespace fdparticle
       }
     matrix.resize(patch_rows.size(), patch_rows.size());
     matrix.setFromTriplets(entries.begin(), entries.end());
-    factorization = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
-    factorization->umfpackControl()(UMFPACK_IRSTEP)              = 0;
-    factorization->umfpackControl()(UMFPACK_STRATEGY)            = UMFPACK_STRATEGY_SYMMETRIC;
-    factorization->umfpackControl()(UMFPACK_ORDERING)            = UMFPACK_ORDERING_CHOLMOD;
-    factorization->umfpackControl()(UMFPACK_SYM_PIVOT_TOLERANCE) = pivot_tolerance;
-    factorization->umfpackControl()(UMFPACK_PIVOT_TOLERANCE)     = pivot_tolerance;
-    factorization->compute(matrix);
-    if (factorization->info() != Eigen::Success)
+    matrix.makeCompressed();
+
+    control.resize(UMFPACK_CONTROL);
+    umfpack_di_defaults(control.data());
+    control[UMFPACK_IRSTEP]              = 0;
+    control[UMFPACK_STRATEGY]            = UMFPACK_STRATEGY_SYMMETRIC;
+    control[UMFPACK_ORDERING]            = UMFPACK_ORDERING_CHOLMOD;
+    control[UMFPACK_SYM_PIVOT_TOLERANCE] = pivot_tolerance;
+    control[UMFPACK_PIVOT_TOLERANCE]     = pivot_tolerance;
+    std::vector<double> info(UMFPACK_INFO);
+    const int           n = patch_rows.size();
+    auto why = [&](const int status) -> std::string {
+      clear();
+      return status == UMFPACK_ERROR_out_of_memory ? "UMFPACK ran out of memory" :
+             status == UMFPACK_WARNING_singular_matrix ? "UMFPACK found it singular" :
+                                                         "UMFPACK status " + std::to_string(status);
+    };
+    void *symbolic = nullptr;
+    int   status   = umfpack_di_symbolic(n, n, matrix.outerIndexPtr(), matrix.innerIndexPtr(),
+                                     matrix.valuePtr(), &symbolic, control.data(), info.data());
+    if (status != UMFPACK_OK)
+      return why(status);
+    const double estimate = bytes_per_factor_entry * info[UMFPACK_SYMMETRIC_LUNZ];
+    if (memory_limit > 0 && estimate > memory_limit)
       {
-        const int status = factorization->umfpackFactorizeReturncode();
+        umfpack_di_free_symbolic(&symbolic);
         clear();
-        return status == UMFPACK_ERROR_out_of_memory ? "UMFPACK ran out of memory" :
-               status == UMFPACK_WARNING_singular_matrix ?
-                                                       "UMFPACK found it singular" :
-                                                       "UMFPACK status " + std::to_string(status);
+        std::ostringstream s;
+        s << std::setprecision(2) << "its " << n << " unknowns would need about "
+          << estimate / 1e9 << " GB to factor, more than the " << memory_limit / 1e9
+          << " GB allowed";
+        return s.str();
       }
-    work.resize(patch_rows.size());
+    status = umfpack_di_numeric(matrix.outerIndexPtr(), matrix.innerIndexPtr(),
+                                matrix.valuePtr(), symbolic, &numeric, control.data(), info.data());
+    umfpack_di_free_symbolic(&symbolic);
+    if (status != UMFPACK_OK)
+      return why(status);
+    factor_memory = info[UMFPACK_PEAK_MEMORY] * info[UMFPACK_SIZE_OF_UNIT];
+    work.resize(n);
+    solution.resize(n);
     return "";
   }
 
@@ -159,7 +190,12 @@ namespace fdparticle
     double *      out = x.trilinos_vector()[0];
     for (unsigned int i = 0; i < patch_rows.size(); ++i)
       work[i] = in[patch_rows[i]];
-    solution = factorization->solve(work);
+    const int status = umfpack_di_solve(UMFPACK_A, matrix.outerIndexPtr(), matrix.innerIndexPtr(),
+                                        matrix.valuePtr(), solution.data(), work.data(), numeric,
+                                        control.data(), nullptr);
+    AssertThrow(status == UMFPACK_OK, ExcMessage("UMFPACK failed to solve with the factored "
+                                                 "cut-cell patch (status " +
+                                                 std::to_string(status) + ")."));
     for (unsigned int i = 0; i < patch_rows.size(); ++i)
       out[patch_rows[i]] += solution[i];
   }

@@ -44,9 +44,16 @@ namespace fdparticle
                         "approximation misses how a cell that a particle almost covers couples "
                         "to its neighbours) and the cheap form of the preconditioner converges "
                         "on 3D scenes (Cheap iterations). Its factors grow faster than its size "
-                        "(mostly the shell of cells around the particle surfaces): a patch that "
-                        "UMFPACK cannot factor is dropped with a warning and the solve goes on "
-                        "without it (doc/scaling.md).");
+                        "(mostly the shell of cells around the particle surfaces): a patch "
+                        "above Cut cell patch memory, or that UMFPACK cannot factor, is dropped "
+                        "with a warning and the solve goes on without it (doc/scaling.md).");
+      prm.declare_entry("Cut cell patch memory", "4", Patterns::Double(0),
+                        "Iterative solver: the most memory, in GB per rank, that the "
+                        "factorization of the cut-cell patch may take, estimated from "
+                        "UMFPACK's symbolic analysis before anything is factored; a larger "
+                        "patch is dropped with a warning (one per run) and the solve goes on "
+                        "without it, with more iterations. UMFPACK cannot go past about 16 GB "
+                        "in any case. 0: no limit.");
       prm.declare_entry("Cut cell patch fluid fraction", "0.25", Patterns::Double(0, 1),
                         "Iterative solver: only cut cells whose fluid part is at most this "
                         "fraction of the cell seed the cut-cell patch (with its rings): the "
@@ -76,6 +83,7 @@ namespace fdparticle
     preconditioner.inner_tolerance = prm.get_double("Inner tolerance");
     preconditioner.patch_layers    = prm.get_integer("Cut cell patch layers");
     preconditioner.patch_fluid_fraction = prm.get_double("Cut cell patch fluid fraction");
+    preconditioner.patch_memory_limit   = prm.get_double("Cut cell patch memory") * 1e9;
     verbose                        = prm.get_bool("Iterative solver statistics");
     prm.leave_subsection();
   }
@@ -173,8 +181,9 @@ namespace fdparticle
     if (verbose && Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
       std::cout << "  iterative solver: " << info.iterations << " FGMRES iterations ("
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "
-                << tolerance << "; cut-cell patch " << preconditioner.patch_size() << " unknowns"
-                << std::endl;
+                << tolerance << "; cut-cell patch " << preconditioner.patch_size()
+                << " unknowns, factored in " << preconditioner.patch_memory() / 1e6
+                << " MB (largest rank)" << std::endl;
     if (reference_iterations == 0)
       reference_iterations = std::max(1u, info.iterations);
     else if (info.iterations > rebuild_growth * reference_iterations)

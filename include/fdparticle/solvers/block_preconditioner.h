@@ -73,6 +73,9 @@ namespace fdparticle
     int patch_layers = 1;
     /// Only cut cells whose fluid part is at most this fraction seed the patch.
     double patch_fluid_fraction = 0.25;
+    /// A rank's patch whose factorization would need more bytes than this is dropped
+    /// (0: no limit).
+    double patch_memory_limit = 0;
 
     /// Build from the system's current values. The system and the operator must outlive
     /// the preconditioner's use; A keeps being read (for the current values).
@@ -86,6 +89,8 @@ namespace fdparticle
 
     /// Unknowns in the cut-cell patch, over all ranks.
     types::global_dof_index patch_size() const { return n_patch; }
+    /// Peak memory of the patch's factorization in bytes, the largest over the ranks.
+    double patch_memory() const { return max_patch_memory; }
 
     /// Inner FGMRES iterations since initialize().
     unsigned int inner_iterations() const { return n_inner_iterations; }
@@ -168,6 +173,7 @@ namespace fdparticle
     /// Whether a patch that could not be factored was reported (once per run).
     bool patch_failure_reported = false;
     types::global_dof_index n_patch      = 0;
+    double                  max_patch_memory = 0;
   };
 } // namespace fdparticle
 

@@ -6,9 +6,7 @@
 #include <fdparticle/solvers/newton_system.h>
 
 #include <Eigen/Sparse>
-#include <Eigen/UmfPackSupport>
 
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,12 +36,18 @@ namespace fdparticle
   class CutCellPatch
   {
   public:
+    CutCellPatch() = default;
+    ~CutCellPatch();
+    CutCellPatch(const CutCellPatch &) = delete;
+    CutCellPatch &operator=(const CutCellPatch &) = delete;
+
     /// Collect the patch of the current system and factor it: the cut cells whose fluid
     /// part is at most max_fluid_fraction of the cell, and `layers` rings of cells
-    /// beyond them. Returns why UMFPACK could not factor it (the patch is then empty), or
-    /// an empty string.
+    /// beyond them. A patch whose factorization would need more than memory_limit bytes
+    /// (estimated from UMFPACK's symbolic analysis; 0: no limit) is not factored. Returns why the patch was not
+    /// factored (it is then empty), or an empty string.
     std::string initialize(const NewtonSystem &system, const unsigned int layers,
-                           const double max_fluid_fraction);
+                           const double max_fluid_fraction, const double memory_limit);
     void clear();
 
     /// x += R_patchᵀ A_patch⁻¹ R_patch r on the owned entries (A's layout).
@@ -51,6 +55,8 @@ namespace fdparticle
 
     /// DoFs in this rank's patch.
     unsigned int size() const { return patch_rows.size(); }
+    /// Peak memory of this rank's factorization in bytes, as UMFPACK measured it.
+    double memory() const { return factor_memory; }
 
   private:
     /// UMFPACK takes a diagonal pivot unless it is below this fraction of its column. The
@@ -63,10 +69,19 @@ namespace fdparticle
     /// 3 554 off-diagonal pivots and 1.6 GB (measured on 2026-11-25). Inside a
     /// preconditioner the lost accuracy is the outer FGMRES's to correct.
     static constexpr double pivot_tolerance = 1e-8;
+    /// Peak memory of the factorization per entry of L + U, for the estimate from
+    /// UMFPACK's symbolic analysis (the entries with diagonal pivots, before anything is
+    /// factored): 14–17 bytes on the patches of the 3D sediment and array scenes
+    /// (4 630–25 830 unknowns, measured on 2026-11-25). The off-diagonal pivots added up
+    /// to 45 % more entries there. UMFPACK's own estimate, an upper bound, was 2.8–3.2
+    /// times the peak.
+    static constexpr double bytes_per_factor_entry = 16;
 
     /// Local rows of A in the patch, in patch order.
     std::vector<unsigned int> patch_rows;
-    /// UMFPACK's LU of the patch matrix. Without iterative refinement: the patch solve is
+    /// UMFPACK's LU of the patch matrix (its C interface: the symbolic analysis gives the
+    /// memory estimate that decides, before the numeric factorization, whether the patch
+    /// is affordable). Without iterative refinement: the patch solve is
     /// one correction inside a preconditioner, and the two refinement steps UMFPACK does by
     /// default tripled its cost (each a residual and a further forward/backward solve).
     /// Ordered by CHOLMOD (the better of AMD and METIS's nested dissection): on the shell
@@ -74,10 +89,12 @@ namespace fdparticle
     /// whole run needed 0.76 times the memory of AMD alone (measured on 2026-11-25).
     /// The symmetric strategy (the ordering of A + Aᵀ, diagonal pivots preferred): the
     /// patch matrix is structurally symmetric. See pivot_tolerance for the pivots.
-    /// The patch matrix stays: UMFPACK's solve reads it (Eigen passes it on).
-    Eigen::SparseMatrix<double>                                    matrix;
-    std::unique_ptr<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>> factorization;
-    mutable Eigen::VectorXd                                        work, solution;
+    /// The patch matrix (compressed columns, as UMFPACK reads it) stays: the solve reads it.
+    Eigen::SparseMatrix<double> matrix;
+    std::vector<double>         control;
+    void *                      numeric       = nullptr;
+    double                      factor_memory = 0;
+    mutable std::vector<double> work, solution;
   };
 } // namespace fdparticle
 
