@@ -11,6 +11,9 @@ Usage: validation.py OUTPUT_DIR MODE REF TOL
   wall       sphere moving at prescribed speed U toward a wall (Stokes): the drag
              correction kappa = F / (6 pi mu a U) = REF (Brenner 1961); within TOL. F is
              the resolved force plus the contact force (the lubrication correction).
+  pair       two spheres approaching each other at prescribed speeds +-U: the same for the
+             last one, lambda = F / (6 pi mu a U) = REF (by symmetry Brenner's sphere
+             approaching a free surface at half the gap); within TOL.
 """
 import math
 import sys
@@ -38,10 +41,10 @@ if mode == "array":
     U = stats["mean_vx"]
     value = force / (mu * U) if dim == 2 else force / (6 * math.pi * mu * radius * U)
     name = "F/(mu U)" if dim == 2 else "K = F/(6 pi mu a U)"
-elif mode == "wall":
+elif mode in ("wall", "pair"):
     U = abs(float(entry[4].split(",")[1]))
     value = abs(last["fy"] + last["contact_fy"]) / (6 * math.pi * mu * radius * U)
-    name = "kappa = F/(6 pi mu a U)"
+    name = "kappa = F/(6 pi mu a U)" if mode == "wall" else "lambda = F/(6 pi mu a U)"
 else:
     sys.exit(f"unknown mode {mode}")
 check(abs(value / ref - 1) < tol,
