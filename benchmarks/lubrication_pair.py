@@ -25,7 +25,7 @@ at --reference-level (default 8, d/h = 128), and the shift s solves resolved = r
 the relative velocity 2U. Writes doc/lubrication_pair_2d.csv and .png.
 
 Regenerate (from the top of the repository, after scripts/build.sh; about 4 min for
---levels 3, 25 min with 4; 2D: 2 min):
+--levels 3, 15 min with 4; 2D: 2 min):
     /usr/bin/python3 benchmarks/lubrication_pair.py [--executable PATH] [--work DIR]
         [--levels 3] [--dimension 2 [--reference-level 8]]
 """
