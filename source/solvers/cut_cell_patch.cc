@@ -3,9 +3,13 @@
 #include <fdparticle/solvers/cut_cell_patch.h>
 
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_Import.h>
+#include <Epetra_Vector.h>
 #include <umfpack.h>
 
+#include <algorithm>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -16,6 +20,9 @@ namespace fdparticle
   void CutCellPatch::clear()
   {
     patch_rows.clear();
+    ghost_rows.clear();
+    ghost_import.reset();
+    ghost_residual.reset();
     if (numeric != nullptr)
       umfpack_di_free_numeric(&numeric);
     factor_memory = 0;
@@ -65,7 +72,13 @@ namespace fdparticle
           new_cells.push_back(c);
       }
 
-    auto row_columns = [&](const unsigned int local, const auto &f) {
+    // f(local column) for the columns of a local row on this rank; the others' columns of
+    // block `remote_block` go to their owners (to_owner), as the patch grows across the
+    // partition: a ring around another rank's cells is that rank's to add.
+    const MPI_Comm comm = system.r_fe.get_mpi_communicator();
+    std::map<unsigned int, std::vector<long long>> to_owner;
+    auto row_columns = [&](const unsigned int local, const unsigned int remote_block,
+                           const auto &f) {
       int     n;
       double *v;
       int *   c;
@@ -75,12 +88,32 @@ namespace fdparticle
           const long long g = E.GCID64(c[k]);
           if (g >= first && g < end)
             f(static_cast<unsigned int>(g - first));
+          else if (b.locate(g).first == remote_block)
+            to_owner[b.owner(g)].push_back(g);
         }
+    };
+    // The DoFs that other ranks found for this one, as local numbers.
+    auto received = [&]() {
+      std::vector<unsigned int> dofs;
+      for (const auto &[from, list] : Utilities::MPI::some_to_some(comm, to_owner))
+        for (const long long g : list)
+          dofs.push_back(g - first);
+      to_owner.clear();
+      return dofs;
     };
     for (unsigned int layer = 0;; ++layer)
       {
         // The new cells' pressure DoFs, and the velocity (and multiplier) DoFs they couple to.
         std::vector<unsigned int> new_velocities;
+        auto add_velocity = [&](const unsigned int j) {
+          if (block_of(j) == Blocks::velocity && !in_patch[j])
+            {
+              // The multiplier DoF at the same node and component.
+              in_patch[j]       = true;
+              in_patch[o_l + j] = true;
+              new_velocities.push_back(j);
+            }
+        };
         for (const unsigned int c : new_cells)
           {
             cell_in[c] = true;
@@ -88,28 +121,25 @@ namespace fdparticle
               {
                 const unsigned int p = o_p + c * npc + i;
                 in_patch[p]          = true;
-                row_columns(p, [&](const unsigned int j) {
-                  if (block_of(j) == Blocks::velocity && !in_patch[j])
-                    {
-                      // The multiplier DoF at the same node and component.
-                      in_patch[j]       = true;
-                      in_patch[o_l + j] = true;
-                      new_velocities.push_back(j);
-                    }
-                });
+                row_columns(p, Blocks::velocity, add_velocity);
               }
           }
+        for (const unsigned int j : received())
+          add_velocity(j);
         if (layer == layers)
           break;
         new_cells.clear();
+        auto add_cell = [&](const unsigned int j) {
+          if (block_of(j) == Blocks::pressure && !cell_in[(j - o_p) / npc])
+            {
+              cell_in[(j - o_p) / npc] = true;
+              new_cells.push_back((j - o_p) / npc);
+            }
+        };
         for (const unsigned int u : new_velocities)
-          row_columns(u, [&](const unsigned int j) {
-            if (block_of(j) == Blocks::pressure && !cell_in[(j - o_p) / npc])
-              {
-                cell_in[(j - o_p) / npc] = true;
-                new_cells.push_back((j - o_p) / npc);
-              }
-          });
+          row_columns(u, Blocks::pressure, add_cell);
+        for (const unsigned int j : received())
+          add_cell(j);
       }
 
     std::vector<int> index(n_local, -1);
@@ -119,23 +149,75 @@ namespace fdparticle
           index[i] = patch_rows.size();
           patch_rows.push_back(i);
         }
-    if (patch_rows.empty())
-      return "";
-    std::vector<Eigen::Triplet<double>> entries;
-    for (unsigned int r = 0; r < patch_rows.size(); ++r)
+
+    // The overlap: the other ranks' velocity and multiplier DoFs that the owned patch rows
+    // couple to, with their rows of A (collective: every rank takes part, with or without
+    // a patch). Not their pressure DoFs: a pressure row whose velocities are not all in
+    // the patch would make the patch's saddle point ill-posed, so the patch takes the
+    // pressure of whole cells only, as its own rings do.
+    std::unique_ptr<Epetra_CrsMatrix> ghost_matrix;
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
       {
-        int     n;
-        double *v;
-        int *   c;
-        E.ExtractMyRowView(patch_rows[r], n, v, c);
-        for (int k = 0; k < n; ++k)
+        for (const unsigned int r : patch_rows)
           {
-            const long long g = E.GCID64(c[k]);
-            if (g >= first && g < end && index[g - first] >= 0)
-              entries.emplace_back(r, index[g - first], v[k]);
+            int     n;
+            double *v;
+            int *   c;
+            E.ExtractMyRowView(r, n, v, c);
+            for (int k = 0; k < n; ++k)
+              {
+                const long long g = E.GCID64(c[k]);
+                if ((g < first || g >= end) && b.locate(g).first != Blocks::pressure)
+                  ghost_rows.push_back(g);
+              }
+          }
+        std::sort(ghost_rows.begin(), ghost_rows.end());
+        ghost_rows.erase(std::unique(ghost_rows.begin(), ghost_rows.end()), ghost_rows.end());
+        IndexSet ghosts(system.r_fe.size());
+        for (const long long g : ghost_rows)
+          ghosts.add_index(g);
+        ghosts.compress();
+        const Epetra_Map ghost_map = ghosts.make_trilinos_map(comm, true);
+        ghost_import   = std::make_unique<Epetra_Import>(ghost_map, E.RowMap());
+        ghost_residual = std::make_unique<Epetra_Vector>(ghost_map);
+        ghost_matrix   = std::make_unique<Epetra_CrsMatrix>(Copy, ghost_map, 0);
+        ghost_matrix->Import(E, *ghost_import, Insert);
+        ghost_matrix->FillComplete(E.DomainMap(), E.RangeMap());
+        if (Utilities::MPI::sum(ghost_rows.size(), comm) == 0)
+          {
+            ghost_import.reset();
+            ghost_residual.reset();
           }
       }
-    matrix.resize(patch_rows.size(), patch_rows.size());
+    if (patch_rows.empty())
+      return "";
+    const unsigned int n_own = patch_rows.size();
+    // Patch number of the global DoF g, or −1: the owned patch rows first, then the ghosts.
+    auto patch_index = [&](const long long g) -> int {
+      if (g >= first && g < end)
+        return index[g - first];
+      const auto it = std::lower_bound(ghost_rows.begin(), ghost_rows.end(), g);
+      return it != ghost_rows.end() && *it == g ? n_own + (it - ghost_rows.begin()) : -1;
+    };
+    std::vector<Eigen::Triplet<double>> entries;
+    auto add_row = [&](const Epetra_CrsMatrix &M, const int local_row, const int patch_row) {
+      int     n;
+      double *v;
+      int *   c;
+      M.ExtractMyRowView(local_row, n, v, c);
+      for (int k = 0; k < n; ++k)
+        {
+          const int j = patch_index(M.GCID64(c[k]));
+          if (j >= 0)
+            entries.emplace_back(patch_row, j, v[k]);
+        }
+    };
+    for (unsigned int r = 0; r < n_own; ++r)
+      add_row(E, patch_rows[r], r);
+    for (unsigned int r = 0; r < ghost_rows.size(); ++r)
+      add_row(*ghost_matrix, r, n_own + r); // its rows are in the order of ghost_rows
+    const unsigned int n_patch = n_own + ghost_rows.size();
+    matrix.resize(n_patch, n_patch);
     matrix.setFromTriplets(entries.begin(), entries.end());
     matrix.makeCompressed();
 
@@ -147,7 +229,7 @@ namespace fdparticle
     control[UMFPACK_SYM_PIVOT_TOLERANCE] = pivot_tolerance;
     control[UMFPACK_PIVOT_TOLERANCE]     = pivot_tolerance;
     std::vector<double> info(UMFPACK_INFO);
-    const int           n = patch_rows.size();
+    const int           n = n_patch;
     auto why = [&](const int status) -> std::string {
       clear();
       return status == UMFPACK_ERROR_out_of_memory ? "UMFPACK ran out of memory" :
@@ -184,19 +266,26 @@ namespace fdparticle
   void CutCellPatch::add_correction(TrilinosWrappers::MPI::Vector &      x,
                                     const TrilinosWrappers::MPI::Vector &r) const
   {
+    // The ghosts' residual (collective, so before any rank returns).
+    if (ghost_import)
+      ghost_residual->Import(r.trilinos_vector(), *ghost_import, Insert);
     if (patch_rows.empty())
       return;
     const double *in  = r.trilinos_vector()[0];
     double *      out = x.trilinos_vector()[0];
-    for (unsigned int i = 0; i < patch_rows.size(); ++i)
+    const unsigned int n_own = patch_rows.size();
+    for (unsigned int i = 0; i < n_own; ++i)
       work[i] = in[patch_rows[i]];
+    for (unsigned int i = 0; i < ghost_rows.size(); ++i)
+      work[n_own + i] = (*ghost_residual)[i];
     const int status = umfpack_di_solve(UMFPACK_A, matrix.outerIndexPtr(), matrix.innerIndexPtr(),
                                         matrix.valuePtr(), solution.data(), work.data(), numeric,
                                         control.data(), nullptr);
     AssertThrow(status == UMFPACK_OK, ExcMessage("UMFPACK failed to solve with the factored "
                                                  "cut-cell patch (status " +
                                                  std::to_string(status) + ")."));
-    for (unsigned int i = 0; i < patch_rows.size(); ++i)
+    // Restricted: only the owned entries are updated; the ghosts' belong to their ranks.
+    for (unsigned int i = 0; i < n_own; ++i)
       out[patch_rows[i]] += solution[i];
   }
 } // namespace fdparticle

@@ -9,15 +9,20 @@
 
 namespace fdparticle
 {
-  std::pair<unsigned int, types::global_dof_index>
-  NewtonSystem::Blocks::locate(const types::global_dof_index g) const
+  unsigned int NewtonSystem::Blocks::owner(const types::global_dof_index g) const
   {
     // The last rank whose range starts at or before g (ranks may own nothing).
     auto it = std::upper_bound(range.begin(), range.end(), g,
                                [](const types::global_dof_index x, const auto &r) { return x < r[0]; });
     Assert(it != range.begin(), ExcInternalError());
-    const std::size_t r = (it - range.begin()) - 1;
-    unsigned int      b = 0;
+    return (it - range.begin()) - 1;
+  }
+
+  std::pair<unsigned int, types::global_dof_index>
+  NewtonSystem::Blocks::locate(const types::global_dof_index g) const
+  {
+    const unsigned int r = owner(g);
+    unsigned int       b = 0;
     while (b + 1 < n_blocks && g >= range[r][b + 1])
       ++b;
     return {b, offset[r][b] + (g - range[r][b])};

@@ -104,6 +104,8 @@ namespace fdparticle
       /// offset[r][b]: block number of rank r's first DoF of block b.
       std::vector<std::array<types::global_dof_index, n_blocks>> offset;
 
+      /// The rank that owns the global DoF g.
+      unsigned int owner(const types::global_dof_index g) const;
       /// Block and block number of the global DoF g.
       std::pair<unsigned int, types::global_dof_index> locate(const types::global_dof_index g) const;
       /// The DoFs of block b over all ranks.
