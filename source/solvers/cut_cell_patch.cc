@@ -142,14 +142,24 @@ namespace fdparticle
           add_cell(j);
       }
 
-    std::vector<int> index(n_local, -1);
     for (unsigned int i = 0; i < n_local; ++i)
       if (in_patch[i])
-        {
-          index[i] = patch_rows.size();
-          patch_rows.push_back(i);
-        }
+        patch_rows.push_back(i);
 
+    const std::unique_ptr<Epetra_CrsMatrix> ghost_matrix = import_overlap(system);
+    if (patch_rows.empty())
+      return "";
+    assemble(system, ghost_matrix.get());
+    return factor(memory_limit);
+  }
+
+  std::unique_ptr<Epetra_CrsMatrix> CutCellPatch::import_overlap(const NewtonSystem &system)
+  {
+    using Blocks              = NewtonSystem::Blocks;
+    const Epetra_CrsMatrix &E = system.A.trilinos_matrix();
+    const MPI_Comm          comm  = system.r_fe.get_mpi_communicator();
+    const auto &            range = system.blocks.range[Utilities::MPI::this_mpi_process(comm)];
+    const long long         first = range[0], end = range[Blocks::n_blocks];
     // The overlap: the other ranks' velocity and multiplier DoFs that the owned patch rows
     // couple to, with their rows of A (collective: every rank takes part, with or without
     // a patch). Not their pressure DoFs: a pressure row whose velocities are not all in
@@ -167,7 +177,7 @@ namespace fdparticle
             for (int k = 0; k < n; ++k)
               {
                 const long long g = E.GCID64(c[k]);
-                if ((g < first || g >= end) && b.locate(g).first != Blocks::pressure)
+                if ((g < first || g >= end) && system.blocks.locate(g).first != Blocks::pressure)
                   ghost_rows.push_back(g);
               }
           }
@@ -189,9 +199,19 @@ namespace fdparticle
             ghost_residual.reset();
           }
       }
-    if (patch_rows.empty())
-      return "";
+    return ghost_matrix;
+  }
+
+  void CutCellPatch::assemble(const NewtonSystem &system, const Epetra_CrsMatrix *ghost_matrix)
+  {
+    const Epetra_CrsMatrix &E = system.A.trilinos_matrix();
+    const auto &range = system.blocks.range[Utilities::MPI::this_mpi_process(
+      system.r_fe.get_mpi_communicator())];
+    const long long    first = range[0], end = range[NewtonSystem::Blocks::n_blocks];
     const unsigned int n_own = patch_rows.size();
+    std::vector<int>   index(end - first, -1);
+    for (unsigned int r = 0; r < n_own; ++r)
+      index[patch_rows[r]] = r;
     // Patch number of the global DoF g, or −1: the owned patch rows first, then the ghosts.
     auto patch_index = [&](const long long g) -> int {
       if (g >= first && g < end)
@@ -221,6 +241,12 @@ namespace fdparticle
     matrix.setFromTriplets(entries.begin(), entries.end());
     matrix.makeCompressed();
 
+    work.resize(n_patch);
+    solution.resize(n_patch);
+  }
+
+  std::string CutCellPatch::factor(const double memory_limit)
+  {
     control.resize(UMFPACK_CONTROL);
     umfpack_di_defaults(control.data());
     control[UMFPACK_IRSTEP]              = 0;
@@ -229,7 +255,7 @@ namespace fdparticle
     control[UMFPACK_SYM_PIVOT_TOLERANCE] = pivot_tolerance;
     control[UMFPACK_PIVOT_TOLERANCE]     = pivot_tolerance;
     std::vector<double> info(UMFPACK_INFO);
-    const int           n = n_patch;
+    const int           n = matrix.rows();
     auto why = [&](const int status) -> std::string {
       clear();
       return status == UMFPACK_ERROR_out_of_memory ? "UMFPACK ran out of memory" :
@@ -258,8 +284,6 @@ namespace fdparticle
     if (status != UMFPACK_OK)
       return why(status);
     factor_memory = info[UMFPACK_PEAK_MEMORY] * info[UMFPACK_SIZE_OF_UNIT];
-    work.resize(n);
-    solution.resize(n);
     return "";
   }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+class Epetra_CrsMatrix;
 class Epetra_Import;
 class Epetra_Vector;
 
@@ -67,6 +68,15 @@ namespace fdparticle
     double memory() const { return factor_memory; }
 
   private:
+    /// The overlap of this rank's patch rows (ghost_rows, ghost_import, ghost_residual)
+    /// and the ghosts' rows of A, in the order of ghost_rows. Collective.
+    std::unique_ptr<Epetra_CrsMatrix> import_overlap(const NewtonSystem &system);
+    /// The patch matrix from A's patch rows and the ghosts' rows.
+    void assemble(const NewtonSystem &system, const Epetra_CrsMatrix *ghost_matrix);
+    /// Factor the patch matrix unless it would need more than memory_limit bytes (0: no
+    /// limit); returns why not, or an empty string.
+    std::string factor(const double memory_limit);
+
     /// UMFPACK takes a diagonal pivot unless it is below this fraction of its column. The
     /// patch is a saddle point: the multiplier rows inside a particle and the pressure rows
     /// of fluid cells have (almost) nothing on the diagonal until the velocities they
