@@ -15,6 +15,21 @@
 
 namespace fdparticle
 {
+  namespace
+  {
+    /// f(global column, value) for the entries of a local row of M.
+    template <typename F>
+    void for_each_entry(const Epetra_CrsMatrix &M, const int local_row, const F &f)
+    {
+      int     n;
+      double *v;
+      int *   c;
+      M.ExtractMyRowView(local_row, n, v, c);
+      for (int k = 0; k < n; ++k)
+        f(M.GCID64(c[k]), v[k]);
+    }
+  } // namespace
+
   CutCellPatch::~CutCellPatch() { clear(); }
 
   void CutCellPatch::clear()
@@ -79,18 +94,12 @@ namespace fdparticle
     std::map<unsigned int, std::vector<long long>> to_owner;
     auto row_columns = [&](const unsigned int local, const unsigned int remote_block,
                            const auto &f) {
-      int     n;
-      double *v;
-      int *   c;
-      E.ExtractMyRowView(local, n, v, c);
-      for (int k = 0; k < n; ++k)
-        {
-          const long long g = E.GCID64(c[k]);
-          if (g >= first && g < end)
-            f(static_cast<unsigned int>(g - first));
-          else if (b.locate(g).first == remote_block)
-            to_owner[b.owner(g)].push_back(g);
-        }
+      for_each_entry(E, local, [&](const long long g, double) {
+        if (g >= first && g < end)
+          f(static_cast<unsigned int>(g - first));
+        else if (b.locate(g).first == remote_block)
+          to_owner[b.owner(g)].push_back(g);
+      });
     };
     // The DoFs that other ranks found for this one, as local numbers.
     auto received = [&]() {
@@ -169,18 +178,10 @@ namespace fdparticle
     if (Utilities::MPI::n_mpi_processes(comm) > 1)
       {
         for (const unsigned int r : patch_rows)
-          {
-            int     n;
-            double *v;
-            int *   c;
-            E.ExtractMyRowView(r, n, v, c);
-            for (int k = 0; k < n; ++k)
-              {
-                const long long g = E.GCID64(c[k]);
-                if ((g < first || g >= end) && system.blocks.locate(g).first != Blocks::pressure)
-                  ghost_rows.push_back(g);
-              }
-          }
+          for_each_entry(E, r, [&](const long long g, double) {
+            if ((g < first || g >= end) && system.blocks.locate(g).first != Blocks::pressure)
+              ghost_rows.push_back(g);
+          });
         std::sort(ghost_rows.begin(), ghost_rows.end());
         ghost_rows.erase(std::unique(ghost_rows.begin(), ghost_rows.end()), ghost_rows.end());
         IndexSet ghosts(system.r_fe.size());
@@ -221,16 +222,11 @@ namespace fdparticle
     };
     std::vector<Eigen::Triplet<double>> entries;
     auto add_row = [&](const Epetra_CrsMatrix &M, const int local_row, const int patch_row) {
-      int     n;
-      double *v;
-      int *   c;
-      M.ExtractMyRowView(local_row, n, v, c);
-      for (int k = 0; k < n; ++k)
-        {
-          const int j = patch_index(M.GCID64(c[k]));
-          if (j >= 0)
-            entries.emplace_back(patch_row, j, v[k]);
-        }
+      for_each_entry(M, local_row, [&](const long long g, const double value) {
+        const int j = patch_index(g);
+        if (j >= 0)
+          entries.emplace_back(patch_row, j, value);
+      });
     };
     for (unsigned int r = 0; r < n_own; ++r)
       add_row(E, patch_rows[r], r);
