@@ -33,12 +33,14 @@ namespace fdparticle
    * particle surfaces: with particle-following refinement the interior is coarse (2 642
    * of 58 838 patch unknowns on the 3D array at c = 0.125 and 10 cells per diameter).
    *
-   * Each rank factors its own patch DoFs together with one layer of overlap, the other
-   * ranks' DoFs that they couple to, and updates only its own (a restricted additive
-   * Schwarz across the ranks): the overlap's rows of A are fetched once per
-   * factorization and its residual once per application. Without the overlap, a
-   * partition through the patch cut the couplings there (28 instead of 42 FGMRES
-   * iterations on 2 ranks; doc/scaling.md).
+   * The rings grow across the partition (each rank hands the others the DoFs of theirs
+   * that its cells reach), and each rank factors its own patch DoFs together with one
+   * layer of overlap, the other ranks' velocity and multiplier DoFs that they couple to,
+   * updating only its own (a restricted additive Schwarz across the ranks): the
+   * overlap's rows of A are fetched once per factorization and its residual once per
+   * application. Where the partition ran through the patch, each rank's own rows alone
+   * needed 42 FGMRES iterations on the 3D array on 6³ cells (28 on one rank, 31 now) and
+   * 160 instead of 81 on the sediment step at n = 12 (doc/scaling.md, Across ranks).
    * With one ring the FGMRES count stops growing with refinement, and the cheap form of
    * the preconditioner (no inner solve) converges on 3D scenes (doc/scaling.md).
    */
@@ -53,13 +55,15 @@ namespace fdparticle
     /// Collect the patch of the current system and factor it: the cut cells whose fluid
     /// part is at most max_fluid_fraction of the cell, and `layers` rings of cells
     /// beyond them. A patch whose factorization would need more than memory_limit bytes
-    /// (estimated from UMFPACK's symbolic analysis; 0: no limit) is not factored. Returns why the patch was not
-    /// factored (it is then empty), or an empty string.
+    /// (estimated from UMFPACK's symbolic analysis; 0: no limit) is not factored.
+    /// Returns why the patch was not factored (it is then empty), or an empty string.
+    /// Collective.
     std::string initialize(const NewtonSystem &system, const unsigned int layers,
                            const double max_fluid_fraction, const double memory_limit);
     void clear();
 
     /// x += R_patchᵀ A_patch⁻¹ R_patch r on the owned entries (A's layout).
+    /// Collective (the overlap's residual is fetched from the other ranks).
     void add_correction(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &r) const;
 
     /// DoFs of this rank in the patch (without the overlap).
