@@ -8,6 +8,7 @@
 #include <fdparticle/particles/rigid_body.h>
 
 #include <algorithm>
+#include <map>
 #include <numeric>
 
 namespace fdparticle
@@ -167,6 +168,7 @@ namespace fdparticle
           range[NewtonSystem::Blocks::pressure + 1] - first_pressure;
         blocks.pressure_fluid_mass.assign(n_pressure * n_p, 0.0);
         blocks.pressure_mass.assign(n_pressure * n_p, 0.0);
+        blocks.cell_particle.assign(n_pressure / n_p, -1);
         blocks.velocity_mass = TrilinosWrappers::MPI::Vector(system.r_fe); // zero here
       }
     Vector<double> local_velocity_mass(n);
@@ -254,6 +256,19 @@ namespace fdparticle
                         fluid_part[a * n_p + b] += m;
                     }
                 }
+            // The particle with the most quadrature points in the cell (the lowest index
+            // of a tie), or none.
+            if (s.has_particle)
+              {
+                std::map<int, unsigned int> points_of;
+                for (const int k : rule.owner)
+                  if (k >= 0)
+                    ++points_of[k];
+                int &covering = blocks.cell_particle[first / n_p];
+                for (const auto &[k, count] : points_of)
+                  if (covering < 0 || count > points_of[covering])
+                    covering = k;
+              }
             // The diagonal of the velocity mass matrix: Σ_q φ_s² JxW, the same for every
             // component.
             const CellShapes<dim> &V = s.velocity_shapes;

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <iomanip>
 #include <map>
+#include <numeric>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -34,10 +36,14 @@ namespace fdparticle
 
   void CutCellPatch::clear()
   {
-    patch_rows.clear();
-    ghost_rows.clear();
-    ghost_import.reset();
-    ghost_residual.reset();
+    dofs.clear();
+    component.clear();
+    import.reset();
+    residual.reset();
+    correction.reset();
+    rows.reset();
+    column_import.reset();
+    columns.reset();
     if (numeric != nullptr)
       umfpack_di_free_numeric(&numeric);
     factor_memory = 0;
@@ -48,11 +54,21 @@ namespace fdparticle
                                        const double max_fluid_fraction, const double memory_limit)
   {
     clear();
+    std::set<std::pair<int, int>> meeting;
+    const std::vector<int> label = grow(system, layers, max_fluid_fraction, meeting);
+    assemble(system, distribute(system, label, meeting));
+    return dofs.empty() ? "" : factor(memory_limit);
+  }
+
+  std::vector<int> CutCellPatch::grow(const NewtonSystem &system, const unsigned int layers,
+                                      const double                   max_fluid_fraction,
+                                      std::set<std::pair<int, int>> &meeting) const
+  {
     using Blocks               = NewtonSystem::Blocks;
     const Epetra_CrsMatrix &E  = system.A.trilinos_matrix();
     const auto &            b  = system.blocks;
-    const auto &            range =
-      b.range[Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator())];
+    const MPI_Comm          comm  = system.r_fe.get_mpi_communicator();
+    const auto &            range = b.range[Utilities::MPI::this_mpi_process(comm)];
     // This rank's DoFs, numbered locally from 0: u | λ | p (NewtonSystem::Blocks).
     const long long    first = range[0], end = range[Blocks::n_blocks];
     const unsigned int n_local = end - first;
@@ -64,7 +80,20 @@ namespace fdparticle
       return local < o_l ? Blocks::velocity : local < o_p ? Blocks::multiplier : Blocks::pressure;
     };
 
-    std::vector<bool>         in_patch(n_local, false), cell_in(n_cells, false);
+    // The particle of each patch DoF and cell; the first particle to reach one keeps it,
+    // a second one meets it.
+    std::vector<int> label(n_local, -1), cell_label(n_cells, -1);
+    auto reach = [&](int &slot, const int particle) {
+      if (slot < 0)
+        {
+          slot = particle;
+          return true;
+        }
+      if (slot != particle)
+        meeting.emplace(std::min(slot, particle), std::max(slot, particle));
+      return false;
+    };
+
     std::vector<unsigned int> new_cells;
     // Seeds: the cells with a particle part whose fluid part is at most
     // max_fluid_fraction of the cell (the pressure mass over the fluid part sums the same
@@ -84,161 +113,178 @@ namespace fdparticle
             whole += b.pressure_mass[k];
           }
         if (fluid < whole && fluid <= max_fluid_fraction * whole)
-          new_cells.push_back(c);
+          {
+            Assert(b.cell_particle[c] >= 0, ExcInternalError());
+            cell_label[c] = b.cell_particle[c];
+            new_cells.push_back(c);
+          }
       }
 
     // f(local column) for the columns of a local row on this rank; the others' columns of
-    // block `remote_block` go to their owners (to_owner), as the patch grows across the
-    // partition: a ring around another rank's cells is that rank's to add.
-    const MPI_Comm comm = system.r_fe.get_mpi_communicator();
+    // block `remote_block` go to their owners with the particle (to_owner), as the patch
+    // grows across the partition: a ring around another rank's cells is that rank's to add.
     std::map<unsigned int, std::vector<long long>> to_owner;
     auto row_columns = [&](const unsigned int local, const unsigned int remote_block,
-                           const auto &f) {
+                           const int particle, const auto &f) {
       for_each_entry(E, local, [&](const long long g, double) {
         if (g >= first && g < end)
-          f(static_cast<unsigned int>(g - first));
+          f(static_cast<unsigned int>(g - first), particle);
         else if (b.locate(g).first == remote_block)
-          to_owner[b.owner(g)].push_back(g);
+          {
+            auto &list = to_owner[b.owner(g)];
+            list.push_back(g);
+            list.push_back(particle);
+          }
       });
     };
-    // The DoFs that other ranks found for this one, as local numbers.
-    auto received = [&]() {
-      std::vector<unsigned int> dofs;
+    // f(local DoF, particle) for what other ranks found for this one.
+    auto receive = [&](const auto &f) {
       for (const auto &[from, list] : Utilities::MPI::some_to_some(comm, to_owner))
-        for (const long long g : list)
-          dofs.push_back(g - first);
+        for (unsigned int k = 0; k < list.size(); k += 2)
+          f(static_cast<unsigned int>(list[k] - first), static_cast<int>(list[k + 1]));
       to_owner.clear();
-      return dofs;
     };
     for (unsigned int layer = 0;; ++layer)
       {
         // The new cells' pressure DoFs, and the velocity (and multiplier) DoFs they couple to.
         std::vector<unsigned int> new_velocities;
-        auto add_velocity = [&](const unsigned int j) {
-          if (block_of(j) == Blocks::velocity && !in_patch[j])
+        auto add_velocity = [&](const unsigned int j, const int particle) {
+          // With the multiplier DoF at the same node and component.
+          if (block_of(j) == Blocks::velocity && reach(label[j], particle))
             {
-              // The multiplier DoF at the same node and component.
-              in_patch[j]       = true;
-              in_patch[o_l + j] = true;
+              label[o_l + j] = particle;
               new_velocities.push_back(j);
             }
         };
         for (const unsigned int c : new_cells)
-          {
-            cell_in[c] = true;
-            for (unsigned int i = 0; i < npc; ++i)
-              {
-                const unsigned int p = o_p + c * npc + i;
-                in_patch[p]          = true;
-                row_columns(p, Blocks::velocity, add_velocity);
-              }
-          }
-        for (const unsigned int j : received())
-          add_velocity(j);
+          for (unsigned int i = 0; i < npc; ++i)
+            {
+              const unsigned int p = o_p + c * npc + i;
+              label[p]             = cell_label[c];
+              row_columns(p, Blocks::velocity, cell_label[c], add_velocity);
+            }
+        receive(add_velocity);
         if (layer == layers)
           break;
         new_cells.clear();
-        auto add_cell = [&](const unsigned int j) {
-          if (block_of(j) == Blocks::pressure && !cell_in[(j - o_p) / npc])
-            {
-              cell_in[(j - o_p) / npc] = true;
-              new_cells.push_back((j - o_p) / npc);
-            }
+        auto add_cell = [&](const unsigned int j, const int particle) {
+          if (block_of(j) == Blocks::pressure && reach(cell_label[(j - o_p) / npc], particle))
+            new_cells.push_back((j - o_p) / npc);
         };
         for (const unsigned int u : new_velocities)
-          row_columns(u, Blocks::pressure, add_cell);
-        for (const unsigned int j : received())
-          add_cell(j);
+          row_columns(u, Blocks::pressure, label[u], add_cell);
+        receive(add_cell);
       }
-
-    for (unsigned int i = 0; i < n_local; ++i)
-      if (in_patch[i])
-        patch_rows.push_back(i);
-
-    const std::unique_ptr<Epetra_CrsMatrix> ghost_matrix = import_overlap(system);
-    if (patch_rows.empty())
-      return "";
-    assemble(system, ghost_matrix.get());
-    return factor(memory_limit);
+    return label;
   }
 
-  std::unique_ptr<Epetra_CrsMatrix> CutCellPatch::import_overlap(const NewtonSystem &system)
+  Epetra_Map CutCellPatch::distribute(const NewtonSystem &system, const std::vector<int> &label,
+                                const std::set<std::pair<int, int>> &meeting)
   {
-    using Blocks              = NewtonSystem::Blocks;
-    const Epetra_CrsMatrix &E = system.A.trilinos_matrix();
-    const MPI_Comm          comm  = system.r_fe.get_mpi_communicator();
-    const auto &            range = system.blocks.range[Utilities::MPI::this_mpi_process(comm)];
-    const long long         first = range[0], end = range[Blocks::n_blocks];
-    // The overlap: the other ranks' velocity and multiplier DoFs that the owned patch rows
-    // couple to, with their rows of A (collective: every rank takes part, with or without
-    // a patch). Not their pressure DoFs: a pressure row whose velocities are not all in
-    // the patch would make the patch's saddle point ill-posed, so the patch takes the
-    // pressure of whole cells only, as its own rings do.
-    std::unique_ptr<Epetra_CrsMatrix> ghost_matrix;
-    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+    const MPI_Comm     comm  = system.r_fe.get_mpi_communicator();
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
+    const long long    first = system.blocks.range[rank][0];
+
+    // The components: particles joined where their rings meet on any rank, each named by
+    // its smallest particle (the same on every rank).
+    int n_labels = 0;
+    for (const int l : label)
+      n_labels = std::max(n_labels, l + 1);
+    n_labels = Utilities::MPI::max(n_labels, comm);
+    std::vector<int> root(n_labels);
+    std::iota(root.begin(), root.end(), 0);
+    auto find = [&](int l) {
+      while (root[l] != l)
+        l = root[l] = root[root[l]];
+      return l;
+    };
+    for (const auto &pairs : Utilities::MPI::all_gather(
+           comm, std::vector<std::pair<int, int>>(meeting.begin(), meeting.end())))
+      for (const auto &[a, c] : pairs)
+        {
+          const int ra = find(a), rc = find(c);
+          root[std::max(ra, rc)] = std::min(ra, rc);
+        }
+
+    // Each component is solved by the rank that owns most of its DoFs (the first of a tie):
+    // the least to send, and the particles spread over the ranks as the partition does.
+    std::vector<unsigned int> owned(n_labels, 0);
+    for (const int l : label)
+      if (l >= 0)
+        ++owned[find(l)];
+    const auto         counts = Utilities::MPI::all_gather(comm, owned);
+    std::vector<unsigned int> solver(n_labels, 0);
+    for (int l = 0; l < n_labels; ++l)
+      for (unsigned int r = 1; r < counts.size(); ++r)
+        if (counts[r][l] > counts[solver[l]][l])
+          solver[l] = r;
+
+    std::vector<std::pair<long long, int>>         solved;
+    std::map<unsigned int, std::vector<long long>> to_solver;
+    for (unsigned int i = 0; i < label.size(); ++i)
+      if (label[i] >= 0)
+        {
+          const int c = find(label[i]);
+          if (solver[c] == rank)
+            solved.emplace_back(first + i, c);
+          else
+            {
+              to_solver[solver[c]].push_back(first + i);
+              to_solver[solver[c]].push_back(c);
+            }
+        }
+    for (const auto &[from, list] : Utilities::MPI::some_to_some(comm, to_solver))
+      for (unsigned int k = 0; k < list.size(); k += 2)
+        solved.emplace_back(list[k], static_cast<int>(list[k + 1]));
+    std::sort(solved.begin(), solved.end());
+    for (const auto &[g, c] : solved)
       {
-        for (const unsigned int r : patch_rows)
-          for_each_entry(E, r, [&](const long long g, double) {
-            if ((g < first || g >= end) && system.blocks.locate(g).first != Blocks::pressure)
-              ghost_rows.push_back(g);
-          });
-        std::sort(ghost_rows.begin(), ghost_rows.end());
-        ghost_rows.erase(std::unique(ghost_rows.begin(), ghost_rows.end()), ghost_rows.end());
-        IndexSet ghosts(system.r_fe.size());
-        for (const long long g : ghost_rows)
-          ghosts.add_index(g);
-        ghosts.compress();
-        const Epetra_Map ghost_map = ghosts.make_trilinos_map(comm, true);
-        ghost_import   = std::make_unique<Epetra_Import>(ghost_map, E.RowMap());
-        ghost_residual = std::make_unique<Epetra_Vector>(ghost_map);
-        ghost_matrix   = std::make_unique<Epetra_CrsMatrix>(Copy, ghost_map, 0);
-        ghost_matrix->Import(E, *ghost_import, Insert);
-        ghost_matrix->FillComplete(E.DomainMap(), E.RangeMap());
-        if (Utilities::MPI::sum(ghost_rows.size(), comm) == 0)
-          {
-            ghost_import.reset();
-            ghost_residual.reset();
-          }
+        dofs.push_back(g);
+        component.push_back(c);
       }
-    return ghost_matrix;
+
+    IndexSet set(system.r_fe.size());
+    set.add_indices(dofs.begin(), dofs.end());
+    set.compress();
+    const Epetra_Map map = set.make_trilinos_map(comm, true);
+    Assert(map.NumMyElements() == static_cast<int>(dofs.size()), ExcInternalError());
+    import     = std::make_unique<Epetra_Import>(map, system.A.trilinos_matrix().RowMap());
+    residual   = std::make_unique<Epetra_Vector>(map);
+    correction = std::make_unique<Epetra_Vector>(map);
+    return map;
   }
 
-  void CutCellPatch::assemble(const NewtonSystem &system, const Epetra_CrsMatrix *ghost_matrix)
+  void CutCellPatch::assemble(const NewtonSystem &system, const Epetra_Map &map)
   {
+    // The patch DoFs' rows of A (collective), numbered in the order of dofs, and how to
+    // fetch the entries of a vector at their columns.
     const Epetra_CrsMatrix &E = system.A.trilinos_matrix();
-    const auto &range = system.blocks.range[Utilities::MPI::this_mpi_process(
-      system.r_fe.get_mpi_communicator())];
-    const long long    first = range[0], end = range[NewtonSystem::Blocks::n_blocks];
-    const unsigned int n_own = patch_rows.size();
-    std::vector<int>   index(end - first, -1);
-    for (unsigned int r = 0; r < n_own; ++r)
-      index[patch_rows[r]] = r;
-    // Patch number of the global DoF g, or −1: the owned patch rows first, then the ghosts.
+    rows = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
+    rows->Import(E, *import, Insert);
+    rows->FillComplete(E.DomainMap(), E.RangeMap());
+    column_import = std::make_unique<Epetra_Import>(rows->ColMap(), E.RowMap());
+    columns       = std::make_unique<Epetra_Vector>(rows->ColMap());
+
+    // Patch number of the global DoF g, or −1.
     auto patch_index = [&](const long long g) -> int {
-      if (g >= first && g < end)
-        return index[g - first];
-      const auto it = std::lower_bound(ghost_rows.begin(), ghost_rows.end(), g);
-      return it != ghost_rows.end() && *it == g ? n_own + (it - ghost_rows.begin()) : -1;
+      const auto it = std::lower_bound(dofs.begin(), dofs.end(), g);
+      return it != dofs.end() && *it == g ? it - dofs.begin() : -1;
     };
     std::vector<Eigen::Triplet<double>> entries;
-    auto add_row = [&](const Epetra_CrsMatrix &M, const int local_row, const int patch_row) {
-      for_each_entry(M, local_row, [&](const long long g, const double value) {
-        const int j = patch_index(g);
-        if (j >= 0)
-          entries.emplace_back(patch_row, j, value);
-      });
-    };
-    for (unsigned int r = 0; r < n_own; ++r)
-      add_row(E, patch_rows[r], r);
-    for (unsigned int r = 0; r < ghost_rows.size(); ++r)
-      add_row(*ghost_matrix, r, n_own + r); // its rows are in the order of ghost_rows
-    const unsigned int n_patch = n_own + ghost_rows.size();
-    matrix.resize(n_patch, n_patch);
+    for (int r = 0; r < rows->NumMyRows(); ++r)
+      {
+        const int i = patch_index(rows->GRID64(r));
+        Assert(i >= 0, ExcInternalError());
+        for_each_entry(*rows, r, [&](const long long g, const double value) {
+          const int j = patch_index(g);
+          if (j >= 0 && component[j] == component[i])
+            entries.emplace_back(i, j, value);
+        });
+      }
+    const unsigned int n = dofs.size();
+    matrix.resize(n, n);
     matrix.setFromTriplets(entries.begin(), entries.end());
     matrix.makeCompressed();
-
-    work.resize(n_patch);
-    solution.resize(n_patch);
   }
 
   std::string CutCellPatch::factor(const double memory_limit)
@@ -286,26 +332,34 @@ namespace fdparticle
   void CutCellPatch::add_correction(TrilinosWrappers::MPI::Vector &      x,
                                     const TrilinosWrappers::MPI::Vector &r) const
   {
-    // The ghosts' residual (collective, so before any rank returns).
-    if (ghost_import)
-      ghost_residual->Import(r.trilinos_vector(), *ghost_import, Insert);
-    if (patch_rows.empty())
-      return;
-    const double *in  = r.trilinos_vector()[0];
-    double *      out = x.trilinos_vector()[0];
-    const unsigned int n_own = patch_rows.size();
-    for (unsigned int i = 0; i < n_own; ++i)
-      work[i] = in[patch_rows[i]];
-    for (unsigned int i = 0; i < ghost_rows.size(); ++i)
-      work[n_own + i] = (*ghost_residual)[i];
-    const int status = umfpack_di_solve(UMFPACK_A, matrix.outerIndexPtr(), matrix.innerIndexPtr(),
-                                        matrix.valuePtr(), solution.data(), work.data(), numeric,
-                                        control.data(), nullptr);
-    AssertThrow(status == UMFPACK_OK, ExcMessage("UMFPACK failed to solve with the factored "
-                                                 "cut-cell patch (status " +
-                                                 std::to_string(status) + ")."));
-    // Restricted: only the owned entries are updated; the ghosts' belong to their ranks.
-    for (unsigned int i = 0; i < n_own; ++i)
-      out[patch_rows[i]] += solution[i];
+    // The transfers are collective: every rank takes part, with or without a patch.
+    residual->Import(r.trilinos_vector(), *import, Insert);
+    columns->Import(x.trilinos_vector(), *column_import, Insert);
+    if (!dofs.empty())
+      {
+        // r − A x on the patch rows only (the map of the patch DoFs is in the order of
+        // dofs: sorted, from an IndexSet).
+        const double *xc = columns->Values();
+        double *      ri = residual->Values();
+        for (int i = 0; i < rows->NumMyRows(); ++i)
+          {
+            int     n;
+            double *v;
+            int *   c;
+            rows->ExtractMyRowView(i, n, v, c);
+            for (int k = 0; k < n; ++k)
+              ri[i] -= v[k] * xc[c[k]];
+          }
+        const int status =
+          umfpack_di_solve(UMFPACK_A, matrix.outerIndexPtr(), matrix.innerIndexPtr(),
+                           matrix.valuePtr(), correction->Values(), residual->Values(), numeric,
+                           control.data(), nullptr);
+        AssertThrow(status == UMFPACK_OK,
+                    ExcMessage("UMFPACK failed to solve with the factored cut-cell patch "
+                               "(status " + std::to_string(status) + ")."));
+      }
+    // Back to the owners, added: each DoF is in one rank's patch. (Epetra's Add would
+    // overwrite the entries that stay on this rank.)
+    x.trilinos_vector().Export(*correction, *import, Epetra_AddLocalAlso);
   }
 } // namespace fdparticle

@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
 
@@ -110,7 +111,8 @@ namespace fdparticle
         op    = std::make_unique<BorderedOperator>(system);
         stale = true;
       }
-    if (stale || !preconditioner.initialized())
+    const bool rebuilt = stale || !preconditioner.initialized();
+    if (rebuilt)
       {
         preconditioner.initialize(system, *op);
         stale                = false;
@@ -118,6 +120,7 @@ namespace fdparticle
         cheap_failed         = false;
       }
 
+    const Timer                   iteration_timer;
     const unsigned int            inner_before = preconditioner.inner_iterations();
     BorderedOperator::BlockVector rhs, solution;
     op->reinit_vector(rhs);
@@ -183,7 +186,14 @@ namespace fdparticle
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "
                 << tolerance << "; cut-cell patch " << preconditioner.patch_size()
                 << " unknowns, factored in " << preconditioner.patch_memory() / 1e6
-                << " MB (largest rank)" << std::endl;
+                << " MB (largest rank); "
+                << (rebuilt ? "preconditioner built in " +
+                                std::to_string(preconditioner.setup_time()) + " s (patch " +
+                                std::to_string(preconditioner.patch_setup_time()) + " s), " :
+                              std::string("preconditioner reused, "))
+                << "iterations " << iteration_timer.wall_time()
+                << " s (preconditioner since built " << preconditioner.apply_time()
+                << " s, its patch " << preconditioner.patch_apply_time() << " s)" << std::endl;
     if (reference_iterations == 0)
       reference_iterations = std::max(1u, info.iterations);
     else if (info.iterations > rebuild_growth * reference_iterations)

@@ -91,6 +91,13 @@ namespace fdparticle
     types::global_dof_index patch_size() const { return n_patch; }
     /// Peak memory of the patch's factorization in bytes, the largest over the ranks.
     double patch_memory() const { return max_patch_memory; }
+    /// Wall time of the last initialize() and of the patch's part of it (rank 0's, s).
+    double setup_time() const { return setup_seconds; }
+    double patch_setup_time() const { return patch_seconds; }
+    /// Wall time of the applications (vmult) since initialize(), and of the patch's part
+    /// of them (its residual and solve) (rank 0's, s).
+    double apply_time() const { return apply_seconds; }
+    double patch_apply_time() const { return patch_apply_seconds; }
 
     /// Inner FGMRES iterations since initialize().
     unsigned int inner_iterations() const { return n_inner_iterations; }
@@ -147,8 +154,9 @@ namespace fdparticle
     /// Where each block's owned entries start in the local array of an A-layout vector.
     std::vector<unsigned int> local_offset;
 
-    /// A_uu, A_λλ + A_λu (both in the λ numbering) and A_uλ, from the blocks of A.
-    std::unique_ptr<Epetra_CrsMatrix> velocity_matrix, multiplier_matrix, coupling_matrix;
+    /// A_uu, A_λλ + A_λu (both in the λ numbering), A_uλ and A_up, from the blocks of A.
+    std::unique_ptr<Epetra_CrsMatrix> velocity_matrix, multiplier_matrix, coupling_matrix,
+      gradient_matrix;
     TrilinosWrappers::PreconditionAMG velocity_amg, multiplier_amg;
     /// L = G M_u⁻¹ Gᵀ (Cahouet–Chabard) and one AMG V-cycle for it.
     std::unique_ptr<Epetra_CrsMatrix> pressure_laplacian;
@@ -164,9 +172,9 @@ namespace fdparticle
 
     mutable unsigned int n_inner_iterations = 0;
     /// Work vectors: A layout, velocity block, multiplier block, Krylov layout.
-    mutable TrilinosWrappers::MPI::Vector full, full2, pressure_part, u_in, u_out, l_in, l_out,
+    mutable TrilinosWrappers::MPI::Vector full, pressure_part, u_in, u_out, l_in, l_out,
       p_in, p_out;
-    mutable BlockVector                   inner_rhs, patch_residual;
+    mutable BlockVector                   inner_rhs;
     /// The exact solve near the cut cells, and whether any rank has one.
     CutCellPatch patch;
     bool                    patch_active = false;
@@ -174,6 +182,8 @@ namespace fdparticle
     bool patch_failure_reported = false;
     types::global_dof_index n_patch      = 0;
     double                  max_patch_memory = 0;
+    double                  setup_seconds = 0, patch_seconds = 0;
+    mutable double          apply_seconds = 0, patch_apply_seconds = 0;
   };
 } // namespace fdparticle
 

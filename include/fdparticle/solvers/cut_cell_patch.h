@@ -8,11 +8,13 @@
 #include <Eigen/Sparse>
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
 class Epetra_CrsMatrix;
 class Epetra_Import;
+class Epetra_Map;
 class Epetra_Vector;
 
 namespace fdparticle
@@ -34,13 +36,15 @@ namespace fdparticle
    * of 58 838 patch unknowns on the 3D array at c = 0.125 and 10 cells per diameter).
    *
    * The rings grow across the partition (each rank hands the others the DoFs of theirs
-   * that its cells reach), and each rank factors its own patch DoFs together with one
-   * layer of overlap, the other ranks' velocity and multiplier DoFs that they couple to,
-   * updating only its own (a restricted additive Schwarz across the ranks): the
-   * overlap's rows of A are fetched once per factorization and its residual once per
-   * application. Where the partition ran through the patch, each rank's own rows alone
-   * needed 42 FGMRES iterations on the 3D array on 6³ cells (28 on one rank, 31 now) and
-   * 160 instead of 81 on the sediment step at n = 12 (doc/scaling.md, Across ranks).
+   * that its cells reach), each DoF carrying the particle whose seed cells reached it;
+   * particles whose rings meet form one component. Each component is solved whole by
+   * one rank, the one that owns most of its DoFs: it fetches their rows of A once per
+   * factorization and their residual once per application, and sends the correction
+   * back to the owners. So the patch and its solve do not depend on the partition. Where
+   * the partition ran through the patch and each rank solved its part (with one layer of
+   * overlap), the sediment step at n = 21 (1 M unknowns) stalled on 2 ranks (153 FGMRES
+   * iterations, 74 on one rank; doc/scaling.md, Across ranks). Entries of A between two
+   * components are left out, as on one rank: the components are independent blocks.
    * With one ring the FGMRES count stops growing with refinement, and the cheap form of
    * the preconditioner (no inner solve) converges on 3D scenes (doc/scaling.md).
    */
@@ -62,21 +66,32 @@ namespace fdparticle
                            const double max_fluid_fraction, const double memory_limit);
     void clear();
 
-    /// x += R_patchᵀ A_patch⁻¹ R_patch r on the owned entries (A's layout).
-    /// Collective (the overlap's residual is fetched from the other ranks).
+    /// x += R_patchᵀ A_patch⁻¹ R_patch (r − A x) (A's layout; r holds whatever else
+    /// acts on these rows, such as the particle border). The residual is formed on the
+    /// patch rows only, not a product with all of A. Collective (the residual, x at the
+    /// patch rows' columns and the correction travel between the owners and the solving
+    /// ranks).
     void add_correction(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &r) const;
 
-    /// DoFs of this rank in the patch (without the overlap).
-    unsigned int size() const { return patch_rows.size(); }
+    /// DoFs of the patch that this rank solves.
+    unsigned int size() const { return dofs.size(); }
     /// Peak memory of this rank's factorization in bytes, as UMFPACK measured it.
     double memory() const { return factor_memory; }
 
   private:
-    /// The overlap of this rank's patch rows (ghost_rows, ghost_import, ghost_residual)
-    /// and the ghosts' rows of A, in the order of ghost_rows. Collective.
-    std::unique_ptr<Epetra_CrsMatrix> import_overlap(const NewtonSystem &system);
-    /// The patch matrix from A's patch rows and the ghosts' rows.
-    void assemble(const NewtonSystem &system, const Epetra_CrsMatrix *ghost_matrix);
+    /// The patch DoFs among this rank's (local numbers, −1: not in the patch), each
+    /// labelled with the particle whose seed cells reached it, and the pairs of particles
+    /// whose rings meet (smaller first). Collective.
+    std::vector<int> grow(const NewtonSystem &system, const unsigned int layers,
+                          const double max_fluid_fraction,
+                          std::set<std::pair<int, int>> &meeting) const;
+    /// From the labels of grow: the DoFs this rank solves (dofs, component), fetched
+    /// from the ranks that own them (import); returns their map. Collective.
+    Epetra_Map distribute(const NewtonSystem &system, const std::vector<int> &label,
+                    const std::set<std::pair<int, int>> &meeting);
+    /// Fetch the rows of A of the DoFs in map (those of distribute), and the patch matrix
+    /// from them. Collective.
+    void assemble(const NewtonSystem &system, const Epetra_Map &map);
     /// Factor the patch matrix unless it would need more than memory_limit bytes (0: no
     /// limit); returns why not, or an empty string.
     std::string factor(const double memory_limit);
@@ -99,13 +114,18 @@ namespace fdparticle
     /// times the peak.
     static constexpr double bytes_per_factor_entry = 16;
 
-    /// Local rows of A in the patch, in patch order; then the overlap: the global DoFs of
-    /// other ranks that they couple to (sorted), how to fetch their values, and their
-    /// residual.
-    std::vector<unsigned int>      patch_rows;
-    std::vector<long long>         ghost_rows;
-    std::unique_ptr<Epetra_Import> ghost_import;
-    std::unique_ptr<Epetra_Vector> ghost_residual;
+    /// The global DoFs whose patch this rank solves (sorted; the patch order) and the
+    /// component of each (its smallest particle); how to fetch their residual from the
+    /// owners and send the correction back, and the two vectors.
+    std::vector<long long>         dofs;
+    std::vector<int>               component;
+    std::unique_ptr<Epetra_Import> import;
+    std::unique_ptr<Epetra_Vector> residual, correction;
+    /// The patch DoFs' rows of A (all their columns), for the residual on the patch, and
+    /// how to fetch x at their columns.
+    std::unique_ptr<Epetra_CrsMatrix> rows;
+    std::unique_ptr<Epetra_Import>    column_import;
+    std::unique_ptr<Epetra_Vector>    columns;
     /// UMFPACK's LU of the patch matrix (its C interface: the symbolic analysis gives the
     /// memory estimate that decides, before the numeric factorization, whether the patch
     /// is affordable). Without iterative refinement: the patch solve is
@@ -121,7 +141,6 @@ namespace fdparticle
     std::vector<double>         control;
     void *                      numeric       = nullptr;
     double                      factor_memory = 0;
-    mutable std::vector<double> work, solution;
   };
 } // namespace fdparticle
 

@@ -122,6 +122,10 @@ namespace fdparticle
       /// the Jacobian when pressure_dofs_per_cell > 0 (the iterative solver only).
       std::vector<double> pressure_mass, pressure_fluid_mass;
       unsigned int        pressure_dofs_per_cell = 0;
+      /// For each owned cell (in the order of its pressure DoFs), the particle that
+      /// covers most of its quadrature points, or −1: which particle's cut-cell patch a
+      /// cell seeds. Written with the pressure masses.
+      std::vector<int> cell_particle;
       /// The diagonal of the velocity mass matrix (0 at constrained DoFs), in r_fe's
       /// layout, written with the pressure masses.
       TrilinosWrappers::MPI::Vector velocity_mass;
