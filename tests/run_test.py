@@ -5,7 +5,8 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
 
   # test-ranks: 1, 2               run on each number of MPI ranks (default 1); with several,
                                    particles.csv must agree between them (relative tolerance
-  # test-rank-tolerance: 1e-8      given here, default 1e-8)
+  # test-rank-tolerance: 1e-8      given here, default 1e-8; a second number replaces the
+                                   absolute floor for values near zero, default 1e-12)
   # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
                                    in one 'fdparticle: error' line, end every rank without
                                    aborting MPI, and leave no output directory behind
@@ -374,11 +375,12 @@ def main():
                 failures.append(f"check {d['test-check']} failed")  # noqa
 
     if len(outputs) > 1:
-        tol = float(d.get("test-rank-tolerance", "1e-8"))
+        tol, *floor = (float(t) for t in d.get("test-rank-tolerance", "1e-8").split())
         base = os.path.join(outputs[0], "particles.csv")
         for other in outputs[1:]:
             # Relative agreement; the absolute floor only absorbs round-off around zero.
-            for p in compare_csv(os.path.join(other, "particles.csv"), base, tol, 1e-12):
+            for p in compare_csv(os.path.join(other, "particles.csv"), base, tol,
+                                 floor[0] if floor else 1e-12):
                 failures.append(f"{os.path.basename(other)} vs {os.path.basename(outputs[0])}: {p}")
 
     for f in failures[:30]:
