@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Direct against iterative linear solver (doc/scaling.md): wall time, peak memory and
-# linear iterations of one Stokes step, on two 3D scenes at growing mesh size.
+# linear iterations of one Stokes step, on two 3D scenes at growing mesh size
+# (benchmarks/scaling_scenes.sh):
 #  - sediment: the seed's sediment scene (box 1 x 2 x 1, sphere R = 0.2, rho_P = 1.5,
 #    mu = 1), Subdivisions n x 2n x n, one BDF1 step of 0.1;
 #  - array:    prm/validation/array3d.prm (a fixed sphere in a periodic cube, c = 0.064,
@@ -24,20 +25,7 @@ solvers="${SOLVERS:-direct iterative iterative-inner}"
 mkdir -p "$work"
 export OMPI_MCA_mpi_yield_when_idle=1
 
-sediment() { # n
-  printf 'set Dimension = 3\nset Gravity = 0, -10, 0\n'
-  printf 'subsection Geometry\n  set Lower corner = -0.5, -0.5, -0.5\n'
-  printf '  set Upper corner = 0.5, 1.5, 0.5\n  set Subdivisions = %s, %s, %s\nend\n' "$1" $((2 * $1)) "$1"
-  printf 'subsection Fluid\n  set Convection = false\nend\n'
-  printf 'subsection Particles\n  set Particles = 0, 1, 0 : 0.2 : 1.5\nend\n'
-  printf 'subsection Time\n  set End time = 0.1\n  set Time step = 0.1\nend\n'
-}
-
-array() { # n
-  sed "s/^  set Subdivisions .*/  set Subdivisions = $1, $1, $1/;
-       s/^  set Particle refinement levels .*/  set Particle refinement levels = 0/" \
-    "$top/prm/validation/array3d.prm"
-}
+. "$top/benchmarks/scaling_scenes.sh"
 
 csv="$top/doc/scaling.csv"
 if [ "${PLOT_ONLY:-0}" != 1 ]; then

@@ -178,8 +178,9 @@ namespace fdparticle
     return label;
   }
 
-  Epetra_Map CutCellPatch::distribute(const NewtonSystem &system, const std::vector<int> &label,
-                                const std::set<std::pair<int, int>> &meeting)
+  Epetra_Map CutCellPatch::distribute(const NewtonSystem &                 system,
+                                      const std::vector<int> &             label,
+                                      const std::set<std::pair<int, int>> &meeting)
   {
     const MPI_Comm     comm  = system.r_fe.get_mpi_communicator();
     const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
@@ -212,7 +213,7 @@ namespace fdparticle
     for (const int l : label)
       if (l >= 0)
         ++owned[find(l)];
-    const auto         counts = Utilities::MPI::all_gather(comm, owned);
+    const auto                counts = Utilities::MPI::all_gather(comm, owned);
     std::vector<unsigned int> solver(n_labels, 0);
     for (int l = 0; l < n_labels; ++l)
       for (unsigned int r = 1; r < counts.size(); ++r)

@@ -65,7 +65,9 @@ namespace fdparticle
                         "the 3D array qualified at 8-10 cells per diameter.");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),
                         "Print, for every linear solve, the FGMRES iterations, the inner "
-                        "iterations and the residual reached.");
+                        "iterations, the residual reached, the cut-cell patch's size and "
+                        "memory, and the wall time of building the preconditioner and of "
+                        "iterating (each with the patch's part; rank 0's times).");
       prm.declare_entry("Reuse preconditioner", "true", Patterns::Bool(),
                         "Iterative solver: keep the preconditioner for new Jacobians (Newton "
                         "iterations, time steps with the same mesh) while the iteration "

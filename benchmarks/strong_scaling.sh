@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Strong scaling of the iterative solver (doc/scaling.md, "One rank per patch"): the 3D
+# sediment step of benchmarks/scaling_scenes.sh at growing n on 1 and 2 ranks, with
+# `Iterative solver statistics` for the parts of the solve. Writes doc/strong_scaling.csv
+# (one row per run: unknowns, FGMRES and inner iterations, the step's wall time, the
+# run's wall time and peak memory of one rank, and from the statistics line the setup of
+# the preconditioner, its patch's part, the iterations and the patch's part of those) and
+# doc/strong_scaling.png (step time against unknowns, both rank counts). Compare within
+# one run (the machine is shared). PLOT_ONLY=1 redraws the plot from the CSV.
+# Usage: bash benchmarks/strong_scaling.sh   (~7 min on 2 cores, 24 GB, with SIZES="12 16 21")
+set -uo pipefail
+top="$(cd "$(dirname "$0")/.." && pwd)"
+exe="${EXE:-$top/build/fdparticle}"
+work="${WORK:-$top/benchmarks/work/strong_scaling}"
+sizes="${SIZES:-12 16 21}"
+[ -x "$exe" ] || bash "$top/scripts/build.sh"
+mkdir -p "$work"
+export OMPI_MCA_mpi_yield_when_idle=1
+. "$top/benchmarks/scaling_scenes.sh"
+
+csv="$top/doc/strong_scaling.csv"
+if [ "${PLOT_ONLY:-0}" != 1 ]; then
+echo "n,ranks,dofs,linear_iterations,inner_iterations,step_seconds,wall_seconds,peak_mb,setup_seconds,patch_setup_seconds,iterate_seconds,patch_apply_seconds" > "$csv"
+for n in $sizes; do
+  for ranks in 1 2; do
+    d="$work/sediment-$n-$ranks"
+    mkdir -p "$d"
+    { sediment "$n"
+      printf 'subsection Solver\n  set Linear solver = iterative\n'
+      printf '  set Iterative solver statistics = true\nend\n'
+      printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$d/out"
+    } > "$d/scene.prm"
+    if ! /usr/bin/time -f "%e %M" -o "$d/time" \
+         mpirun --oversubscribe -np "$ranks" "$exe" "$d/scene.prm" > "$d/log" 2>&1; then
+      echo "sediment $n on $ranks ranks failed (see $d/log)"
+      continue
+    fi
+    read -r wall kb < "$d/time"
+    row=$(tail -1 "$d/out/statistics.csv")
+    # "built in A s (patch B s), iterations C s (... D s, its patch E s)"
+    parts=$(grep -m1 'iterative solver:' "$d/log" |
+      sed -E 's/.*built in ([0-9.]+) s \(patch ([0-9.]+) s\), iterations ([0-9.]+) s .* its patch ([0-9.]+) s\)/\1,\2,\3,\4/')
+    echo "$n,$ranks,$(echo "$row" | cut -d, -f5,7,8,10),$wall,$((kb / 1024)),$parts" | tee -a "$csv"
+  done
+done
+fi
+
+gnuplot <<GNUPLOT
+set terminal pngcairo size 800,500
+set output "$top/doc/strong_scaling.png"
+set datafile separator ","
+set logscale xy
+set xlabel "finite-element unknowns"
+set ylabel "wall time of the step [s]"
+set key top left
+plot for [r in "1 2"] sprintf("< grep -E '^[0-9]+,%s,' $csv", r) using 3:6 with linespoints title r." rank(s)", \
+  for [r in "1 2"] sprintf("< grep -E '^[0-9]+,%s,' $csv", r) using 3:(\$10+\$12) with linespoints dashtype 2 title r." rank(s): the patch's part"
+GNUPLOT
