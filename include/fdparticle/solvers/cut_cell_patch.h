@@ -66,11 +66,11 @@ namespace fdparticle
                            const double max_fluid_fraction, const double memory_limit);
     void clear();
 
-    /// x += R_patchᵀ A_patch⁻¹ R_patch (r − A x) (A's layout; r holds whatever else
-    /// acts on these rows, such as the particle border). The residual is formed on the
-    /// patch rows only, not a product with all of A. Collective (the residual, x at the
-    /// patch rows' columns and the correction travel between the owners and the solving
-    /// ranks).
+    /// x += R_patchᵀ A_patch⁻¹ R_patch (r − A x), in A's layout, where r is the
+    /// right-hand side less the other terms of these rows (the particle border B y). The
+    /// residual is formed on the patch rows only, not a product with all of A.
+    /// Collective (the residual, x at the patch rows' columns and the correction travel
+    /// between the owners and the solving ranks).
     void add_correction(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &r) const;
 
     /// DoFs of the patch that this rank solves.
