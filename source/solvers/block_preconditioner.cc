@@ -170,8 +170,10 @@ namespace fdparticle
     amg.elliptic              = true;
     amg.higher_order_elements = true;
     amg.constant_modes        = system->blocks.velocity_modes;
-    amg.smoother_sweeps       = (system->blocks.velocity_modes.size() == 3 ? smoother_sweeps_3d :
-                                                                        smoother_sweeps_2d);
+    amg.smoother_sweeps = (system->blocks.velocity_modes.size() == 3 &&
+                               system->A.m() >= large_3d_problem ?
+                             large_3d_smoother_sweeps :
+                             smoother_sweeps);
     amg.aggregation_threshold = velocity_aggregation_threshold;
     velocity_matrix           = extract(velocity_block, {velocity_block});
     velocity_amg.initialize(*velocity_matrix, amg);

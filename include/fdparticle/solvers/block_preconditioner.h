@@ -116,15 +116,21 @@ namespace fdparticle
     /// couplings of the Q2 matrices (0.02 for K, 0.05 for A_λλ + M, whose rows outside the
     /// particles are only diagonal) need 10–14, and the whole solve took 2.5–4.5 times less
     /// time on the 3D array and sediment scenes (doc/scaling.md). Larger thresholds (0.1)
-    /// coarsen too fast and the count rises again. In 3D one sweep: a row of the Q2
-    /// velocity matrix has about 375 entries (50 in 2D), so the smoother's products are
-    /// most of a V-cycle there, and in the cheap form (one V-cycle per FGMRES iteration)
-    /// one sweep took 5–25 % more FGMRES iterations but 4–31 % less time iterating on the
-    /// 3D sediment step (61 k–1 M unknowns) and array (6³–14³ cells); with the inner solve
-    /// 81 s instead of 136 s (sediment, n = 12; measured on 2026-11-26, doc/scaling.md).
-    /// In 2D three: one took 52 % more iterations on settling_many_2d, for more time.
-    static constexpr unsigned int smoother_sweeps_2d               = 3;
-    static constexpr unsigned int smoother_sweeps_3d               = 1;
+    /// coarsen too fast and the count rises again. On large 3D problems one sweep: a row
+    /// of the Q2 velocity matrix has about 375 entries (50 in 2D), so the smoother's
+    /// products are most of a V-cycle there, and in the cheap form (one V-cycle per
+    /// FGMRES iteration) one sweep took 5–25 % more FGMRES iterations but 4–31 % less
+    /// time iterating on the 3D sediment step (61 k–1 M unknowns) and array (60 k–157 k);
+    /// with the inner solve 81 s instead of 136 s (sediment, 198 k; measured on
+    /// 2026-11-26, doc/scaling.md). Below that the cheap form, close to its limit, falls
+    /// back to the inner solve more often with one sweep: on the 3D sediment step at
+    /// 27 k unknowns every case of benchmarks/robustness.sh took more time (up to 2.1
+    /// times), and the 3D array at 14 k unknowns 35 instead of 28 FGMRES iterations. In 2D
+    /// three: one took 52 % more iterations on settling_many_2d, for more time.
+    static constexpr unsigned int smoother_sweeps = 3, large_3d_smoother_sweeps = 1;
+    /// Unknowns of A from which a 3D problem counts as large (between 27 k and 60 k,
+    /// where the measurements above change sides).
+    static constexpr types::global_dof_index large_3d_problem = 50000;
     static constexpr double       velocity_aggregation_threshold   = 0.02;
     static constexpr double       multiplier_aggregation_threshold = 0.05;
 
