@@ -37,7 +37,8 @@ namespace fdparticle
                         "the preconditioner (doc/method.md §8).");
       prm.declare_entry("Cut cell patch layers", "1", Patterns::Integer(-1, 3),
                         "Iterative solver: after each application of the block preconditioner, "
-                        "solve exactly (UMFPACK, on each rank's own DoFs) for the velocity, "
+                        "solve exactly (UMFPACK; each particle's patch, joined with those it "
+                        "meets, by one rank) for the velocity, "
                         "multiplier and pressure of the cells inside the particles, of the "
                         "nearly covered cut cells (Cut cell patch fluid fraction) and of this "
                         "many rings of cells around them; -1: no patch. With 1 the FGMRES "
