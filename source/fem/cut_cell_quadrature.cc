@@ -216,7 +216,7 @@ namespace fdparticle
   {
     std::vector<unsigned int> meeting;
     for (const unsigned int k : balls)
-      if (particles[k].distance_to(box) < particles[k].radius)
+      if (particles[k].meets(box))
         meeting.push_back(k);
     // No ball, or two at the deepest level: the tensor rule, each point owned by the ball
     // that contains it (exact for the Q2 integrands without a ball).

@@ -102,7 +102,10 @@ namespace fdparticle
               far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
                                         std::abs(p.geometry_center[d] - box.upper_bound(d))),
                                2);
-            if (p.distance_to(box) <= p.radius + margin && std::sqrt(far2) >= p.radius - margin)
+            // Within the surface tolerance, so that mirror-image cells decide alike.
+            const double tolerance = Particle<dim>::surface_tolerance * p.radius;
+            if (p.distance_to(box) <= p.radius + margin + tolerance &&
+                std::sqrt(far2) >= p.radius - margin - tolerance)
               return true;
           }
       }

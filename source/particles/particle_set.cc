@@ -241,7 +241,7 @@ namespace fdparticle
       }
     std::vector<unsigned int> result;
     index->for_each_in_box(lower, upper, [&](const unsigned int k) {
-      if (particles[k].distance_to(box) < particles[k].radius)
+      if (particles[k].meets(box))
         result.push_back(k);
     });
     std::sort(result.begin(), result.end());
