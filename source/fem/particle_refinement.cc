@@ -5,6 +5,20 @@
 
 namespace fdparticle
 {
+  namespace
+  {
+    /**
+     * Slack of the band's edges, in units of the cell's size. For a centre on a vertex and
+     * a radius of whole cells the edges R ± b h lie on mesh planes, and mirror-image cells
+     * must decide alike after the centre has moved off its plane of symmetry by round-off:
+     * 1e-12 a step on prm/dkt3d.prm, past the surface tolerance of 1e-10 R after seven
+     * steps, when one side of the pair's band lost a row of refined cells and the pair
+     * left its plane (v_y from 1e-10 to 1e-5 of the speed). A millionth of a cell (4e-8
+     * there) covers tens of thousands of such steps and moves no band edge that matters.
+     */
+    constexpr double band_tolerance = 1e-6;
+  } // namespace
+
   template <int dim>
   void ParticleRefinement<dim>::declare_parameters(ParameterHandler &prm)
   {
@@ -102,8 +116,8 @@ namespace fdparticle
               far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
                                         std::abs(p.geometry_center[d] - box.upper_bound(d))),
                                2);
-            // Within the surface tolerance, so that mirror-image cells decide alike.
-            const double tolerance = Particle<dim>::surface_tolerance * p.radius;
+            // With a slack, so that mirror-image cells decide alike (band_tolerance).
+            const double tolerance = band_tolerance * h;
             if (p.distance_to(box) <= p.radius + margin + tolerance &&
                 std::sqrt(far2) >= p.radius - margin - tolerance)
               return true;

@@ -92,15 +92,18 @@ namespace fdparticle
     /// and a radius of whole cells, as scenes are often set up) falls on either side by
     /// round-off, and differently from its mirror image: cells then became cut or not
     /// (penalties, multiplier DoFs) at random, and a sphere on the axis of a symmetric
-    /// box drifted sideways at 1.8 % of its settling speed in its first step (10⁻⁶ with
-    /// the tolerance; tests/symmetry_vertex_3d.prm). Far above round-off (10⁻¹⁶), far
-    /// below anything a mesh resolves.
+    /// box drifted sideways at 1.8 % of its settling speed in its first step (round-off
+    /// with the tolerance and the level-set rules of doc/method.md §7;
+    /// tests/symmetry_vertex_3d.prm). Far above round-off (10⁻¹⁶), far below anything a
+    /// mesh resolves.
     static constexpr double surface_tolerance = 1e-10;
 
     /// Whether x is in the ball, its surface included (within surface_tolerance).
     bool contains(const Point<dim> &x) const
     {
-      return (x - geometry_center).norm() < radius * (1 + surface_tolerance);
+      // Squares: the same test without a root, per quadrature point of a cut cell.
+      return (x - geometry_center).norm_square() <
+             radius * radius * (1 + surface_tolerance) * (1 + surface_tolerance);
     }
     /// Whether the ball overlaps the box by more than touching (within surface_tolerance).
     bool meets(const BoundingBox<dim> &box) const
