@@ -83,18 +83,21 @@ for study in "${studies[@]}"; do
     space_3d)
       # 3D, steady: the cubic array of fixed spheres (c = 0.064, prm/validation/array3d.prm),
       # QoI the superficial velocity U = mean_vx, reference Zick & Homsy's K = 2.810:
-      # U = 1/(6 pi mu a K) = 0.0760855. Uniform 8^3, 16^3 against following 4^3 + 1, 2
-      # levels (the same surface h), Gauss 7 against level set (8 runs, ~10 min).
+      # U = 1/(6 pi mu a K) = 0.0760855. Uniform 8^3, 16^3 against following 4^3 + 1, 2, 3
+      # levels (the same surface h up to d/h = 8; d/h = 16 following only: uniform 32^3
+      # would be 1.8 M unknowns), Gauss 7 against level set (10 runs).
       # (The settling sphere of prm/sediment.prm costs 150 s per step with 2 levels.)
-      array_study space_3d "uniform|1|0,uniform|2|0,following|0|1,following|0|2" 0.0760855
+      array_study space_3d "uniform|1|0,uniform|2|0,following|0|1,following|0|2,following|0|3" 0.0760855
       ;;
     space_3d_small)
       # The same with a small sphere, c = 0.008 (a = 0.124070; the box is 8 diameters):
       # reference from the Hasimoto / Sangani & Acrivos series (doc/references/README.md,
-      # good for c <~ 0.2): K = 1.524646, U = 1/(6 pi mu a K) = 0.2804548. Uniform 8^3, 16^3
-      # against following 4^3 + 2, 3, 4 levels, Gauss 7 against level set (10 runs).
-      array_study space_3d_small "uniform|1|0,uniform|2|0,following|0|2,following|0|3,following|0|4" 0.2804548 \
-        --set "Particles/Particles=0.5, 0.5, 0.5 : 0.124070 : 1 : fixed"
+      # good for c <~ 0.2): K = 1.524646, U = 1/(6 pi mu a K) = 0.2804548. Uniform 8^3, 16^3,
+      # 32^3 against following 4^3 + 2, 3, 4 levels, Gauss 7 against level set (12 runs);
+      # Linear solver = auto: the direct solver below 500 k unknowns, the iterative one on
+      # uniform 32^3 (1.8 M unknowns), where MUMPS cannot allocate its factors in 24 GB.
+      array_study space_3d_small "uniform|1|0,uniform|2|0,uniform|3|0,following|0|2,following|0|3,following|0|4" 0.2804548 \
+        --set "Particles/Particles=0.5, 0.5, 0.5 : 0.124070 : 1 : fixed" --set "Solver/Linear solver=auto"
       ;;
     dt_2d)
       # Fixed mesh (32 x 64, level-set rules, Stokes), dt = 0.0125 ... 2 to t = 6 (~7 min):
