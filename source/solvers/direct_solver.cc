@@ -18,6 +18,7 @@
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 namespace fdparticle
 {
@@ -78,8 +79,9 @@ namespace fdparticle
         }
     }
 
-    /// MUMPS's INFOG(1) for a numerically singular matrix.
-    constexpr int mumps_singular = -10;
+    /// MUMPS's INFOG(1) for a numerically singular matrix, and for an allocation that
+    /// failed (INFOG(2): what it asked for, in entries of its real arrays).
+    constexpr int mumps_singular = -10, mumps_out_of_memory = -13;
 
     /// MUMPS reports large counts as −(count in millions).
     double mumps_count(const int v) { return v >= 0 ? double(v) : -1e6 * v; }
@@ -202,6 +204,13 @@ namespace fdparticle
                         "the orderings it has (it picks PORD: 7 % more flops, 3x the analysis "
                         "time on the 3D sediment scene); AMD, AMF and QAMD need 2-2.5x the "
                         "flops of METIS there.");
+      prm.declare_entry("Direct solver memory", "0", Patterns::Double(0),
+                        "Largest memory, in GB, that the MUMPS factorization may need on one "
+                        "MPI rank, by the estimate of its analysis (INFOG(16)); a larger "
+                        "factorization stops the run at once with a message, before anything "
+                        "is allocated, instead of running the machine out of memory. 0: no "
+                        "limit (MUMPS then stops when an allocation fails, and so does the "
+                        "run).");
       prm.declare_entry("Direct solver statistics", "false", Patterns::Bool(),
                         "Print, for every factorization, its wall time and (MUMPS) the "
                         "ordering used, the flops and the number of entries in the factors.");
@@ -215,6 +224,7 @@ namespace fdparticle
     solver_type    = prm.get("Direct solver");
     mumps_ordering = prm.get("MUMPS ordering");
     verbose        = prm.get_bool("Direct solver statistics");
+    memory_limit_mb = 1000 * prm.get_double("Direct solver memory");
     prm.leave_subsection();
   }
 
@@ -357,6 +367,15 @@ namespace fdparticle
                 ExcMessage("Amesos rejected the parameters of " + solver_type + "."));
     AssertThrow(solver->SymbolicFactorization() == 0,
                 ExcMessage(solver_type + ": the symbolic factorization failed."));
+    // INFOG(16): the analysis' estimate of the factorization's memory on the rank that
+    // needs most (MB, in core); the same on every rank.
+    if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
+        mumps != nullptr && memory_limit_mb > 0 && mumps->GetINFOG()[15] > memory_limit_mb)
+      throw OutOfMemory(solver_type + ": the factorization would need about " +
+                        std::to_string(mumps->GetINFOG()[15]) + " MB on one rank, more than "
+                        "'Solver/Direct solver memory' allows; 'Solver/Linear solver = "
+                        "iterative' needs about half the memory and grows linearly with the "
+                        "unknowns (doc/scaling.md).");
     symbolic_done = true;
     ++stats.n_symbolic;
     const double t = seconds_since(start);
@@ -381,6 +400,21 @@ namespace fdparticle
           break;
         auto *    mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
         const int info  = mumps ? mumps->GetINFOG()[0] : 0;
+        // The factors do not fit in the machine's memory: a shorter time step gives the
+        // same matrix pattern and the same factors (on uniform 32³ cells of the 3D array,
+        // 1.8 M unknowns, MUMPS asked for 10¹⁰ entries, and the time loop halved Δt six
+        // times for nothing).
+        if (info == mumps_out_of_memory)
+          {
+            std::ostringstream asked;
+            asked << std::setprecision(2) << mumps_count(mumps->GetINFOG()[1]);
+            throw OutOfMemory(
+              solver_type + " could not allocate " + asked.str() +
+              " entries for the factorization (MUMPS INFOG(1) = -13, out of memory): the "
+              "direct solver does not fit this problem on this machine; 'Solver/Linear "
+              "solver = iterative' needs about half its memory and grows linearly with "
+              "the unknowns (doc/scaling.md).");
+          }
         const bool short_of_space =
           info == -8 || info == -9 || info == -14 || info == -15 || info == -17;
         AssertThrow(short_of_space && attempt < max_workspace_retries,

@@ -1,4 +1,5 @@
 #include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/solvers/linear_solver.h>
 #include <fdparticle/solvers/newton_solver.h>
 
 #include <algorithm>
@@ -88,6 +89,10 @@ namespace fdparticle
         try
           {
             result.linear_iterations += problem.solve(forcing);
+          }
+        catch (const OutOfMemory &e)
+          {
+            return fail(Outcome::out_of_memory, ParameterTools::one_line_message(e));
           }
         catch (const std::exception &e)
           {

@@ -94,6 +94,9 @@ namespace fdparticle
     std::string solver_type    = "Amesos_Mumps";
     std::string mumps_ordering = "metis";
     bool        verbose        = false;
+    /// Largest memory the MUMPS factorization may need on one rank, in MB, by its
+    /// analysis' estimate (0: no limit).
+    double memory_limit_mb = 0;
 
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    solver;

@@ -9,10 +9,20 @@
 #include <Eigen/Dense>
 
 #include <memory>
+#include <stdexcept>
 
 namespace fdparticle
 {
   using namespace dealii;
+
+  /// A linear solve that could not allocate the memory it needs. Unlike other failures of
+  /// a solve, a shorter time step does not help: the time loop stops at once instead of
+  /// halving Δt (doc/method.md §5).
+  class OutOfMemory : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
 
   /**
    * The solve of a Newton system for the correction (x, y), whatever the method. The
@@ -60,7 +70,8 @@ namespace fdparticle
     /// A, B, C or D have new values.
     virtual void operator_changed() = 0;
     /// Solve [A B; C D][x; y] = −[r_fe; r_p] to the relative tolerance; throws a
-    /// std::exception with a sentence when it cannot.
+    /// std::exception with a sentence when it cannot (OutOfMemory when memory is what
+    /// it lacks).
     virtual SolveInfo solve(const NewtonSystem &system, const double tolerance,
                             TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y) = 0;
   };

@@ -31,7 +31,8 @@ namespace fdparticle
       not_finite,           ///< the residual became NaN or infinite
       diverged,             ///< the residual grew by more than divergence_factor
       too_many_iterations,  ///< Max nonlinear iterations reached
-      linear_solver_failed  ///< the linear solve threw (e.g. a singular particle block)
+      linear_solver_failed, ///< the linear solve threw (e.g. a singular particle block)
+      out_of_memory         ///< the linear solve could not allocate its memory
     };
 
     struct Result

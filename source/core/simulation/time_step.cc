@@ -46,6 +46,9 @@ namespace fdparticle
         const std::string when = "At t = " + std::to_string(time.time() + time.next_step()) +
                                  " (step " + std::to_string(time.step_number() + 1) +
                                  ", dt = " + ParameterTools::format_short(time.next_step()) + ")";
+        // Memory that a linear solve cannot get is not found in a shorter step.
+        if (result.outcome == NewtonSolver::Outcome::out_of_memory)
+          stop(when + ": " + failure);
         if (failure.empty())
           {
             // Positions are checked before the step is accepted. A ball that went through
