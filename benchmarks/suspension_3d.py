@@ -29,16 +29,20 @@ def sangani_acrivos(c):
             - 3.0734 * c ** (10 / 3))
 
 
+def richardson_zaki(phi):
+    return (1 - phi) ** 4.65
+
+
 runs = []
 for name in sorted(os.listdir(work)):
     m = re.fullmatch(r"n(\d+)_L([\d.]+)_c(\d+)_s(\d+)", name)
     # Finished runs only: a step in statistics.csv and the peak memory written.
     if (not m or not os.path.exists(f"{work}/{name}/statistics.csv")
-            or not os.path.exists(f"{work}/{name}.mem")
-            or not open(f"{work}/{name}.mem").read().strip()):
+            or not os.path.exists(f"{work}/{name}.mem")):
         continue
+    memory = open(f"{work}/{name}.mem").read().split()
     rows = list(csv.DictReader(open(f"{work}/{name}/statistics.csv")))
-    if not rows:
+    if not memory or not rows:
         continue
     n, box, cells, seed = int(m[1]), float(m[2]), int(m[3]), int(m[4])
     row = rows[-1]
@@ -50,7 +54,7 @@ for name in sorted(os.listdir(work)):
         "unknowns": int(row["dofs"]), "linear_iterations": int(row["linear_iterations"]),
         "u_over_u0": -slip / u0, "ranks": int(open(f"{work}/{name}.ranks").read()),
         "seconds": float(row["wall_seconds"]),
-        "peak_MB": int(open(f"{work}/{name}.mem").read().split()[-1]) / 1024})
+        "peak_MB": int(memory[-1]) / 1024})
 
 # The discretization factor of each box and mesh, from its one-sphere runs.
 factors = defaultdict(list)
@@ -69,7 +73,7 @@ with open(out, "w") as f:
         r["u_over_u0_corrected"] = r["u_over_u0"] / factor[k] if k in factor else float("nan")
         # One sphere: the exact array value; a suspension: Richardson–Zaki, n = 4.65.
         phi = r["solid_fraction"]
-        r["reference"] = sangani_acrivos(phi) if r["particles"] == 1 else (1 - phi) ** 4.65
+        r["reference"] = sangani_acrivos(phi) if r["particles"] == 1 else richardson_zaki(phi)
         f.write(",".join(f"{r[c]:.6g}" if isinstance(r[c], float) else str(r[c])
                          for c in columns) + "\n")
 
@@ -85,7 +89,7 @@ for (n, box, cells), rs in sorted(groups.items()):
     print(f"{n:<4}{phi:<8.4f}{rs[0]['cells_per_diameter']:<5g}{len(rs):<6}"
           f"{sum(u) / len(u):.4f} ({min(u):.4f}..{max(u):.4f})  "
           f"{sum(c) / len(c):.4f} ({min(c):.4f}..{max(c):.4f})  "
-          f"{(1 - phi) ** 4.65:.4f}   {1 - 6.55 * phi:.4f}     "
+          f"{richardson_zaki(phi):.4f}   {1 - 6.55 * phi:.4f}     "
           f"{factor.get((box, cells), float('nan')):.4f}  {rs[0]['ranks']:<6}"
           f"{sum(r['seconds'] for r in rs) / len(rs):<6.0f} {max(r['peak_MB'] for r in rs):.0f}")
 
@@ -97,7 +101,7 @@ by_n = defaultdict(list)
 for r in runs:
     if (r["particles"] > 1 and 0.1 <= r["solid_fraction"] <= 0.105
             and abs(r["cells_per_diameter"] - 2) < 0.01):
-        by_n[r["particles"]].append(r["u_over_u0_corrected"] / (1 - r["solid_fraction"]) ** 4.65)
+        by_n[r["particles"]].append(r["u_over_u0_corrected"] / richardson_zaki(r["solid_fraction"]))
 for n, q in sorted(by_n.items()):
     print(f"phi 0.10-0.105, d/h = 2, N = {n}: corrected U/U0 over Richardson-Zaki "
           f"{sum(q) / len(q):.3f} ({min(q):.3f}..{max(q):.3f}, {len(q)} seeds)")

@@ -83,6 +83,11 @@ namespace fdparticle
     /// failed (INFOG(2): what it asked for, in entries of its real arrays).
     constexpr int mumps_singular = -10, mumps_out_of_memory = -13;
 
+    /// What the two out-of-memory stops advise.
+    const std::string use_iterative_solver =
+      "'Solver/Linear solver = iterative' needs about half the memory and grows linearly "
+      "with the unknowns (doc/scaling.md).";
+
     /// MUMPS reports large counts as −(count in millions).
     double mumps_count(const int v) { return v >= 0 ? double(v) : -1e6 * v; }
 
@@ -373,9 +378,7 @@ namespace fdparticle
         mumps != nullptr && memory_limit_mb > 0 && mumps->GetINFOG()[15] > memory_limit_mb)
       throw OutOfMemory(solver_type + ": the factorization would need about " +
                         std::to_string(mumps->GetINFOG()[15]) + " MB on one rank, more than "
-                        "'Solver/Direct solver memory' allows; 'Solver/Linear solver = "
-                        "iterative' needs about half the memory and grows linearly with the "
-                        "unknowns (doc/scaling.md).");
+                        "'Solver/Direct solver memory' allows; " + use_iterative_solver);
     symbolic_done = true;
     ++stats.n_symbolic;
     const double t = seconds_since(start);
@@ -411,9 +414,8 @@ namespace fdparticle
             throw OutOfMemory(
               solver_type + " could not allocate " + asked.str() +
               " entries for the factorization (MUMPS INFOG(1) = -13, out of memory): the "
-              "direct solver does not fit this problem on this machine; 'Solver/Linear "
-              "solver = iterative' needs about half its memory and grows linearly with "
-              "the unknowns (doc/scaling.md).");
+              "direct solver does not fit this problem on this machine; " +
+              use_iterative_solver);
           }
         const bool short_of_space =
           info == -8 || info == -9 || info == -14 || info == -15 || info == -17;
