@@ -13,9 +13,9 @@ namespace fdparticle
                         "factorization (Direct solver) and the particle unknowns by their "
                         "Schur complement; exact, time and memory growing faster than the "
                         "unknowns. 'iterative': FGMRES with a block preconditioner; memory "
-                        "linear in the unknowns, to the Newton tolerance (inexact Newton). 'auto': iterative when the first mesh "
-                        "has more than 'Iterative solver from' unknowns (estimated from the "
-                        "number of cells), else direct.");
+                        "linear in the unknowns, to the Newton tolerance (inexact Newton). "
+                        "'auto': iterative when the mesh a run starts (or resumes) with has at least 'Iterative solver "
+                        "from' finite-element unknowns, else direct (kept for the whole run).");
       prm.declare_entry("Iterative solver from", "500000", Patterns::Double(0),
                         "Linear solver = auto: the problem size (unknowns) from which the "
                         "iterative solver is used. The default is where the direct solver "
@@ -29,14 +29,14 @@ namespace fdparticle
   }
 
   std::unique_ptr<LinearSolver> LinearSolver::create(ParameterHandler &prm,
-                                                     const double      estimated_unknowns)
+                                                     const types::global_dof_index unknowns)
   {
     prm.enter_subsection("Solver");
     std::string choice = prm.get("Linear solver");
     const double threshold = prm.get_double("Iterative solver from");
     prm.leave_subsection();
     if (choice == "auto")
-      choice = estimated_unknowns >= threshold ? "iterative" : "direct";
+      choice = unknowns >= threshold ? "iterative" : "direct";
     if (choice == "iterative")
       {
         auto iterative = std::make_unique<IterativeSolver>();

@@ -10,7 +10,7 @@
 // couple to velocity only, with no diagonal entry (so the solver has to pivot off the
 // diagonal). The bookkeeping of the factorization is checked too: a system laid out again
 // with the same pattern keeps the symbolic factorization, new values need a new numeric
-// one, and a new pattern needs a new symbolic one.
+// one, and a new pattern needs a new symbolic one. Linear solver = auto chooses by size.
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -197,6 +197,20 @@ namespace
     check(error(s, *solver, full) < 1e-12 && st.n_symbolic == 2,
           what + ": a new pattern gets a new symbolic factorization");
   }
+
+  /// Linear solver = auto: the iterative solver from 'Iterative solver from' unknowns on.
+  void check_auto_choice()
+  {
+    ParameterHandler prm;
+    LinearSolver::declare_parameters(prm);
+    prm.parse_input_from_string("subsection Solver\n"
+                                "  set Linear solver = auto\n"
+                                "  set Iterative solver from = 1000\n"
+                                "end\n");
+    check(!LinearSolver::create(prm, 999)->iterative(), "auto: 999 unknowns go to the direct solver");
+    check(LinearSolver::create(prm, 1000)->iterative(),
+          "auto: 1000 unknowns go to the iterative solver");
+  }
 } // namespace
 
 int main(int argc, char **argv)
@@ -209,5 +223,6 @@ int main(int argc, char **argv)
         check_solver("Amesos_Mumps", ordering);
       check_solver("Amesos_Klu", "auto");
     }
+  check_auto_choice();
   return summary();
 }

@@ -57,9 +57,9 @@ namespace fdparticle
     /// Declare the parameters of every implementation, and the choice between them.
     static void declare_parameters(ParameterHandler &prm);
     /// The implementation the parameters select, set up from them; 'auto' chooses by the
-    /// size of the problem.
-    static std::unique_ptr<LinearSolver> create(ParameterHandler &prm,
-                                                const double      estimated_unknowns);
+    /// number of finite-element unknowns.
+    static std::unique_ptr<LinearSolver> create(ParameterHandler &            prm,
+                                                const types::global_dof_index unknowns);
 
     /// Whether solves take iterations (and the tolerance matters).
     virtual bool iterative() const { return false; }

@@ -121,13 +121,6 @@ namespace fdparticle
                                "): the mesh cannot resolve it. Refine with Geometry/Global "
                                "refinements or Refinement/Particle refinement levels."));
     }
-    {
-      // Unknowns per cell of a large mesh: 2^dim nodes of Q2 per cell, 2·dim components
-      // (u, λ), and dim + 1 pressure DoFs.
-      const double unknowns_per_cell = 2 * dim * std::pow(2.0, dim) + dim + 1;
-      linear_solver = LinearSolver::create(prm, unknowns_per_cell *
-                                                  refinement.estimated_cells(domain, particles));
-    }
     checkpointer.parse_parameters(prm, output.directory());
     repulsion.parse_parameters(prm);
     collisions.parse_parameters(prm);
@@ -179,7 +172,8 @@ namespace fdparticle
           << particles.n_unknowns() << " particle unknowns, " << particles.size()
           << " particle(s), " << time.scheme_name() << ", "
           << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
-          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)";
+          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s), "
+          << (linear_solver->iterative() ? "iterative" : "direct") << " linear solver";
     pcout << partition_summary() << std::endl;
     check_resolution();
     for (const std::string &line :

@@ -46,6 +46,11 @@ namespace fdparticle
   {
     TimerOutput::Scope t(*timer, "setup");
     dof_handler.distribute_dofs(fe);
+    // Chosen once, on the first mesh: 'auto' by its unknowns. An estimate from the
+    // refinement band before the mesh existed counted a mesh of 431 k unknowns as more
+    // than 500 k (the 3D array of doc/studies.md §4).
+    if (!linear_solver)
+      linear_solver = LinearSolver::create(prm, dof_handler.n_dofs());
     setup_blocks();
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
