@@ -48,7 +48,11 @@ namespace fdparticle
                         "on 3D scenes (Cheap iterations). Its factors grow faster than its size "
                         "(mostly the shell of cells around the particle surfaces): a patch "
                         "above Cut cell patch memory, or that UMFPACK cannot factor, is dropped "
-                        "with a warning and the solve goes on without it (doc/scaling.md).");
+                        "with a warning and the solve goes on without it (doc/scaling.md). With "
+                        "many particles a few cells across (a suspension) the patch costs more "
+                        "than it saves: -1 there (with 25 spheres the solve was 4 times faster "
+                        "at 2 cells per diameter; at 3 and 4 the patch could not be factored, "
+                        "after 45 s of trying; doc/scaling.md).");
       prm.declare_entry("Cut cell patch memory", "4", Patterns::Double(0),
                         "Iterative solver: the most memory, in GB per rank, that the "
                         "factorization of the cut-cell patch may take, estimated from "
