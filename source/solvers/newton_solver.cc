@@ -103,11 +103,15 @@ namespace fdparticle
         if (problem.linear)
           {
             problem.apply_update(1.0);
-            residual        = problem.assemble(false);
-            result.residual = residual;
-            if (!std::isfinite(residual))
-              return fail(Outcome::not_finite, "the residual is not finite" + where());
-            return result;
+            residual = problem.assemble(false);
+            if (residual <= target)
+              break;
+            // Still above the target after an exact solve: a force that is not linear in
+            // the unknowns acts (a contact or lubrication force, evaluated where the
+            // particles end the step), so Newton goes on, with exact solves and the full
+            // step (the caught cases above stop a residual that is not finite or grows).
+            residual = problem.assemble(true);
+            continue;
           }
         double theta = 1.0, trial;
         for (;;)

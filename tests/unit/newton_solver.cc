@@ -180,6 +180,34 @@ int main()
           p.tolerances.empty() ? "none" : std::to_string(p.tolerances[0]));
   }
 
+  // A linear problem with a small cubic term, as a contact force adds to a Stokes step:
+  // the first exact correction leaves the residual above the target, and exact corrections
+  // with full steps go on until it is met (once, one correction was accepted as converged).
+  {
+    TestProblem p;
+    Eigen::MatrixXd A(2, 2);
+    A << 4, 1, 2, 3;
+    const Eigen::Vector2d b(1, 2);
+    p.F = [A, b](const Eigen::VectorXd &v) {
+      Eigen::VectorXd r = A * v - b;
+      r[0] += 10 * v[0] * v[0] * v[0];
+      return r;
+    };
+    p.J = [A](const Eigen::VectorXd &v) {
+      Eigen::MatrixXd j = A;
+      j(0, 0) += 30 * v[0] * v[0];
+      return j;
+    };
+    p.x               = Eigen::Vector2d(0, 0);
+    const auto result = solver(true, true).solve(p.callbacks(true));
+    check(result.converged() && p.F(p.x).norm() < 1e-12,
+          "linear with a cubic term: converged to the target",
+          "residual " + sci(p.F(p.x).norm()) + " after " + std::to_string(result.iterations) +
+            " corrections");
+    check(result.iterations > 1, "linear with a cubic term: more than one correction",
+          std::to_string(result.iterations) + " corrections");
+  }
+
   // log x = 1 from x = 10: the full Newton step goes to x = 10 − 10·log 10 < 0.
   {
     auto make = []() {

@@ -14,7 +14,9 @@ namespace fdparticle
    * Newton's method for one time step (doc/method.md §5), independent of what the unknowns
    * are: the caller supplies the problem as callbacks, this class decides when to
    * assemble a new Jacobian, how far to step (backtracking line search) and when to give
-   * up. A linear problem (Stokes) is the special case of one correction with the full step.
+   * up. A linear problem (Stokes) is the special case of one correction with the full step,
+   * unless a force that is not linear (contacts in a Stokes step) leaves the residual above
+   * the target: then exact corrections with full steps follow until it is met.
    *
    * Modified Newton: the Jacobian (and the linear solver's operator built from it) is kept
    * while each iteration still cuts the residual by jacobian_reuse_reduction; "Reuse
@@ -65,7 +67,8 @@ namespace fdparticle
       std::function<void(double theta)> apply_update;
       /// Where the residual is largest, for the failure messages (may be empty).
       std::function<std::string()> describe_residual;
-      /// A linear problem: one correction with the full step, no line search.
+      /// A linear problem: each solve exact, full steps, no line search; one correction
+      /// unless the residual is still above the target after it.
       bool linear = false;
     };
 
