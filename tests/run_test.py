@@ -39,6 +39,15 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    (default 1e-10) relative to the largest value of each
                                    kind of column (positions: the box size). A scene that
                                    is its own mirror image must so stay symmetric.
+  # test-shift: AXIS DISTANCE[, AXIS DISTANCE]  also run the scene with every particle
+  # test-shift-tolerance: TOL      moved by DISTANCE along the periodic direction AXIS (its
+                                   centre wrapped into the box; one run per pair): the
+                                   flow is the same, shifted, so
+                                   particles.csv and the mean velocities in statistics.csv
+                                   must equal the first run's (positions modulo the period)
+                                   to TOL (default 1e-10) relative to the largest value of
+                                   each kind of column. DISTANCE must be a whole number of
+                                   cells, so that the mesh moves onto itself.
 
 The output directory set in the prm is replaced by --work/ranks-N.
 """
@@ -176,16 +185,18 @@ def mirror_prm(text, axis):
     return text + extra, lo, hi, min(radii, default=hi - lo)
 
 
-def compare_mirrored(first_dir, mirror_dir, axis, lo, hi, radius, tol):
-    """Mismatches between a run and the run of its mirror image."""
-    a = AXES.index(axis)
+def compare_transformed(first_dir, other_dir, label, expected_value, box_size, radius, tol):
+    """Mismatches between a run and the run of a transformed scene (a mirror image, a
+    periodic shift): expected_value(family, component, value) returns what the first run's
+    value should be, given the other run's, and the period modulo which the error counts
+    (None: none); box_size sets the scale of positions."""
     problems = []
     velocity_scale = 0.0  # of the particles, for the box's mean velocity (nearly zero in a closed box)
     for fname in ("particles.csv", "statistics.csv"):
         header, rows = read_csv(os.path.join(first_dir, fname))
-        header_m, rows_m = read_csv(os.path.join(mirror_dir, fname))
+        header_m, rows_m = read_csv(os.path.join(other_dir, fname))
         if header != header_m or len(rows) != len(rows_m):
-            problems.append(f"{fname}: the mirrored run has other columns or rows")
+            problems.append(f"{fname}: the {label} run has other columns or rows")
             continue
         kinds = {h: split_column(h) for h in header}
         if fname == "statistics.csv":
@@ -198,7 +209,7 @@ def compare_mirrored(first_dir, mirror_dir, axis, lo, hi, radius, tol):
                 family = kinds[h][0]
                 for row in rows + rows_m:
                     scale[family] = max(scale.get(family, 0.0), abs(float(row[i])))
-        scale["position"] = hi - lo
+        scale["position"] = max(box_size)
         # Rotation and moments are measured against what the translation makes of them
         # on the smallest particle (radius): ω ~ |V|/R, torque ~ |F| R.
         if fname == "particles.csv":
@@ -215,17 +226,66 @@ def compare_mirrored(first_dir, mirror_dir, axis, lo, hi, radius, tol):
             family, component = kinds[h]
             c = AXES.index(component)
             for r, (row, row_m) in enumerate(zip(rows, rows_m)):
-                x, y = float(row[i]), float(row_m[i])
-                if family == "position":
-                    expected = lo + hi - y if c == a else y
-                elif family in PSEUDO_COLUMNS:
-                    expected = y if c == a else -y
-                else:
-                    expected = -y if c == a else y
-                if abs(x - expected) > tol * max(scale[family], 1e-300):
-                    problems.append(f"mirror {axis}: {fname} row {r + 1} column {h}: {x!r} vs "
-                                    f"{expected!r} from the mirrored run (scale {scale[family]:.3g})")
+                x = float(row[i])
+                expected, period = expected_value(family, c, float(row_m[i]))
+                error = x - expected
+                if period:
+                    error -= period * round(error / period)
+                if abs(error) > tol * max(scale[family], 1e-300):
+                    problems.append(f"{label}: {fname} row {r + 1} column {h}: {x!r} vs "
+                                    f"{expected!r} from the {label} run (scale {scale[family]:.3g})")
     return problems
+
+
+def compare_mirrored(first_dir, mirror_dir, axis, lo, hi, radius, tol):
+    """Mismatches between a run and the run of its mirror image."""
+    a = AXES.index(axis)
+
+    def expected_value(family, c, y):
+        if family == "position":
+            return (lo + hi - y if c == a else y), None
+        if family in PSEUDO_COLUMNS:
+            return (y if c == a else -y), None
+        return (-y if c == a else y), None
+
+    return compare_transformed(first_dir, mirror_dir, f"mirror {axis}", expected_value,
+                               [hi - lo], radius, tol)
+
+
+def shift_prm(text, axis, distance):
+    """The prm text of the scene with every particle moved by distance along axis, its
+    centre wrapped into the box; also the box's size along axis and the smallest radius."""
+    a = AXES.index(axis)
+    entries = testlib.prm_entries(text)
+    lo = float(entries["Geometry/Lower corner"].split(",")[a])
+    hi = float(entries["Geometry/Upper corner"].split(",")[a])
+    if axis not in entries.get("Geometry/Periodic directions", ""):
+        raise SystemExit(f"test-shift needs {axis} among Geometry/Periodic directions")
+    particles, radii = [], []
+    for entry in entries.get("Particles/Particles", "").split(";"):
+        if not entry.strip():
+            continue
+        fields = [f.strip() for f in entry.split(":")]
+        centre = [float(v) for v in fields[0].split(",")]
+        centre[a] = lo + (centre[a] + distance - lo) % (hi - lo)
+        radii.append(float(fields[1]))
+        fields[0] = ", ".join(repr(v) for v in centre)
+        particles.append(" : ".join(fields))
+    extra = "\nsubsection Particles\n  set Particles = " + "; ".join(particles) + "\nend\n"
+    return text + extra, hi - lo, min(radii, default=hi - lo)
+
+
+def compare_shifted(first_dir, shifted_dir, axis, distance, period, radius, tol):
+    """Mismatches between a run and the run of the scene shifted along a periodic axis."""
+    a = AXES.index(axis)
+
+    def expected_value(family, c, y):
+        if family == "position" and c == a:
+            return y - distance, period
+        return y, None
+
+    return compare_transformed(first_dir, shifted_dir, f"shift {axis}", expected_value,
+                               [period], radius, tol)
 
 
 def check_restart(opts, text, d, ranks, full_dir):
@@ -360,6 +420,21 @@ def main():
                     failures.append(f"the run mirrored in {axis} exited with {result.returncode}")
                     continue
                 failures += compare_mirrored(out_dir, m_dir, axis, lo, hi, radius, tol)
+        for shift in (s.split() for s in d.get("test-shift", "").split(",") if s.strip()):
+            axis, distance = shift[0], float(shift[1])
+            tol = float(d.get("test-shift-tolerance", "1e-10"))
+            shifted, period, radius = shift_prm(text, axis, distance)
+            s_dir = out_dir + f"-shift-{axis}"
+            s_prm = os.path.join(opts.work, f"{name}-ranks-{ranks}-shift-{axis}.prm")
+            with open(s_prm, "w") as f:
+                f.write(shifted + f"\nsubsection Output\n  set Directory = {s_dir}\nend\n")
+            result = run(opts.executable, [s_prm], ranks, opts.work)
+            sys.stdout.write(result.stdout[-2000:])
+            sys.stderr.write(result.stderr[-2000:])
+            if result.returncode != 0:
+                failures.append(f"the run shifted in {axis} exited with {result.returncode}")
+            else:
+                failures += compare_shifted(out_dir, s_dir, axis, distance, period, radius, tol)
         solver_ranks = d.get("test-solvers", "").split()[2:]
         if "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks):
             failures += check_other_solver(opts, text, d, name, ranks, out_dir)

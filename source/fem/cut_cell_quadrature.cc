@@ -178,7 +178,7 @@ namespace fdparticle
     double       gap = std::numeric_limits<double>::max();
     for (const unsigned int k : rule.balls)
       {
-        const double g = x.distance(particles[k].geometry_center) - particles[k].radius;
+        const double g = particles[k].offset(x).norm() - particles[k].radius;
         if (g < gap)
           {
             gap = g;
@@ -244,13 +244,22 @@ namespace fdparticle
                                             std::vector<double> &            weights,
                                             std::vector<int> &               owners) const
   {
+    // The balls that meet the box, and the images of their centres that do: two images of
+    // one ball (a ball across a periodic face, a box across the rest of the period) are
+    // separated as two balls are.
     std::vector<unsigned int> meeting;
+    std::vector<Point<dim>>   centres;
     for (const unsigned int k : balls)
-      if (particles[k].meets(box))
-        meeting.push_back(k);
+      {
+        const Particle<dim> &p = particles[k];
+        const auto images = p.centres_near(box, p.radius * (1 - Particle<dim>::surface_tolerance));
+        if (!images.empty())
+          meeting.push_back(k);
+        centres.insert(centres.end(), images.begin(), images.end());
+      }
     // No ball, or two at the deepest level: the tensor rule, each point owned by the ball
     // that contains it (exact for the Q2 integrands without a ball).
-    if (meeting.empty() || (meeting.size() > 1 && depth == max_separation_depth))
+    if (meeting.empty() || (centres.size() > 1 && depth == max_separation_depth))
       {
         const QGauss<dim> gauss(level_set_order);
         for (unsigned int q = 0; q < gauss.size(); ++q)
@@ -268,12 +277,12 @@ namespace fdparticle
           }
         return;
       }
-    if (meeting.size() == 1)
+    if (centres.size() == 1)
       {
         std::vector<Point<dim>> inside, outside;
         std::vector<double>     inside_weights, outside_weights;
-        append_ball_rules(box, particles[meeting[0]], inside, inside_weights, outside,
-                          outside_weights);
+        append_ball_rules(box, centres[0], particles[meeting[0]].radius, inside,
+                          inside_weights, outside, outside_weights);
         points.insert(points.end(), inside.begin(), inside.end());
         weights.insert(weights.end(), inside_weights.begin(), inside_weights.end());
         owners.insert(owners.end(), inside.size(), int(meeting[0]));
@@ -288,13 +297,13 @@ namespace fdparticle
 
   template <int dim>
   void CutCellQuadrature<dim>::append_ball_rules(const BoundingBox<dim> &box,
-                                                 const Particle<dim> &    particle,
+                                                 const Point<dim> &       X,
+                                                 const double             radius,
                                                  std::vector<Point<dim>> &inside_points,
                                                  std::vector<double> &    inside_weights,
                                                  std::vector<Point<dim>> &outside_points,
                                                  std::vector<double> &    outside_weights) const
   {
-    const Point<dim> &X = particle.geometry_center;
     const auto        append = [](const Quadrature<dim> &q, std::vector<Point<dim>> &points,
                            std::vector<double> &weights) {
       points.insert(points.end(), q.get_points().begin(), q.get_points().end());
@@ -308,7 +317,7 @@ namespace fdparticle
         far2 += std::pow(std::max(X[d] - box.lower_bound(d), box.upper_bound(d) - X[d]), 2);
         gap = std::max(gap, std::max(box.lower_bound(d) - X[d], X[d] - box.upper_bound(d)));
       }
-    if (far2 < particle.radius * particle.radius)
+    if (far2 < radius * radius)
       {
         // The box lies in the ball: the tensor rule is exact for the Q2 integrands.
         const QGauss<dim> gauss(level_set_order);
@@ -324,7 +333,7 @@ namespace fdparticle
       }
     if (gap >= min_height_slope * std::sqrt(far2))
       {
-        generator->generate(BallLevelSet<dim>(X, particle.radius), box);
+        generator->generate(BallLevelSet<dim>(X, radius), box);
         append(generator->get_inside_quadrature(), inside_points, inside_weights);
         append(generator->get_outside_quadrature(), outside_points, outside_weights);
         return;
@@ -362,7 +371,7 @@ namespace fdparticle
             lower[d] = pieces[d][index[d]].first;
             upper[d] = pieces[d][index[d]].second;
           }
-        append_ball_rules(BoundingBox<dim>(std::make_pair(lower, upper)), particle,
+        append_ball_rules(BoundingBox<dim>(std::make_pair(lower, upper)), X, radius,
                           inside_points, inside_weights, outside_points, outside_weights);
         unsigned int d = 0;
         while (d < dim && ++index[d] == pieces[d].size())

@@ -76,50 +76,33 @@ namespace fdparticle
 
   template <int dim>
   bool ParticleRefinement<dim>::in_band(const typename Triangulation<dim>::cell_iterator &cell,
-                                        const ParticleSet<dim> &particles,
-                                        const Domain<dim> &     domain) const
+                                        const ParticleSet<dim> &particles) const
   {
-    // In a periodic direction the band wraps around the boundary: the cell's images a
-    // period to either side are tested too, so a ball near a periodic face has the same
-    // mesh around it as in the middle of the box (and no hanging nodes across that face).
-    std::vector<BoundingBox<dim>> images{cell->bounding_box()};
-    for (unsigned int d = 0; d < dim; ++d)
-      if (domain.is_periodic(d))
-        {
-          const double period = domain.upper_corner()[d] - domain.lower_corner()[d];
-          const std::size_t n = images.size();
-          for (std::size_t i = 0; i < n; ++i)
-            for (const double shift : {-period, period})
-              {
-                auto corners = images[i].get_boundary_points();
-                corners.first[d] += shift;
-                corners.second[d] += shift;
-                images.emplace_back(corners);
-              }
-        }
     // Distance from the surface |x − X| = R to the cell's box, against band × diameter.
     // Only the balls within the margin of a box can pass: the index finds them, in the box
     // grown by one cell more than the margin, so that the strict test of meeting() cannot
-    // drop a ball exactly at the margin.
+    // drop a ball exactly at the margin. In a periodic direction each image of a centre
+    // counts, so a ball next to a periodic face has the same mesh around it as in the
+    // middle of the box (and no hanging nodes across that face).
+    const BoundingBox<dim> box = cell->bounding_box();
     const double h = cell->diameter() / std::sqrt(double(dim));
     const double margin = band_width * h;
-    for (const auto &box : images)
+    BoundingBox<dim> reach = box;
+    reach.extend(margin + h);
+    // With a slack, so that mirror-image cells decide alike (band_tolerance).
+    const double tolerance = band_tolerance * h;
+    for (const unsigned int k : particles.meeting(reach))
       {
-        BoundingBox<dim> reach = box;
-        reach.extend(margin + h);
-        for (const unsigned int k : particles.meeting(reach))
+        const Particle<dim> &p = particles[k];
+        for (const Point<dim> &X : p.centres_near(box, p.radius + margin + tolerance))
           {
-            const Particle<dim> &p = particles[k];
             // The box's farthest point from the centre: the far corner in every direction.
             double far2 = 0;
             for (unsigned int d = 0; d < dim; ++d)
-              far2 += std::pow(std::max(std::abs(p.geometry_center[d] - box.lower_bound(d)),
-                                        std::abs(p.geometry_center[d] - box.upper_bound(d))),
+              far2 += std::pow(std::max(std::abs(X[d] - box.lower_bound(d)),
+                                        std::abs(X[d] - box.upper_bound(d))),
                                2);
-            // With a slack, so that mirror-image cells decide alike (band_tolerance).
-            const double tolerance = band_tolerance * h;
-            if (p.distance_to(box) <= p.radius + margin + tolerance &&
-                std::sqrt(far2) >= p.radius - margin - tolerance)
+            if (std::sqrt(far2) >= p.radius - margin - tolerance)
               return true;
           }
       }
@@ -129,7 +112,6 @@ namespace fdparticle
   template <int dim>
   bool ParticleRefinement<dim>::mark(parallel::distributed::Triangulation<dim> &triangulation,
                                      const ParticleSet<dim> &particles,
-                                     const Domain<dim> &     domain,
                                      const unsigned int      base_level) const
   {
     bool changed = false;
@@ -139,7 +121,7 @@ namespace fdparticle
           // Coarsen only where the parent would not be refined again: a child can leave
           // the band (its own margin is smaller) while its parent is still in it, and the
           // mesh would flip between the two every step.
-          if (in_band(cell, particles, domain))
+          if (in_band(cell, particles))
             {
               if (cell->level() < int(base_level + n_levels))
                 {
@@ -147,7 +129,7 @@ namespace fdparticle
                   changed = true;
                 }
             }
-          else if (cell->level() > int(base_level) && !in_band(cell->parent(), particles, domain))
+          else if (cell->level() > int(base_level) && !in_band(cell->parent(), particles))
             {
               cell->set_coarsen_flag();
               changed = true;

@@ -26,12 +26,24 @@ namespace fdparticle
   }
 
   template <int dim>
+  long CellList<dim>::row_of(const double x, const unsigned int d) const
+  {
+    // Clamped to a few periods: far outside the box every row is reached anyway, and the
+    // cast to long stays defined.
+    const double row = std::floor((x - lower[d]) / length[d] * n_bins[d]);
+    return static_cast<long>(std::clamp(row, -2.0 * n_bins[d], 3.0 * n_bins[d]));
+  }
+
+  template <int dim>
   typename CellList<dim>::Bin CellList<dim>::bin_of(const Point<dim> &x) const
   {
     Bin b;
     for (unsigned int d = 0; d < dim; ++d)
-      b[d] = std::clamp(static_cast<long>(std::floor((x[d] - lower[d]) / length[d] * n_bins[d])),
-                        0L, n_bins[d] - 1);
+      {
+        const long r = row_of(x[d], d);
+        b[d] = periodic[d] ? ((r % n_bins[d]) + n_bins[d]) % n_bins[d] :
+                             std::clamp(r, 0L, n_bins[d] - 1);
+      }
     return b;
   }
 

@@ -96,6 +96,50 @@ namespace fdparticle
   } // namespace
 
   template <int dim>
+  std::vector<Point<dim>> Particle<dim>::centres_near(const BoundingBox<dim> &box,
+                                                    const double reach) const
+  {
+    // Per direction, the shifts k with lo − reach < X + k L < hi + reach; then the
+    // combinations within reach in all directions together.
+    std::array<std::vector<double>, dim> coordinates;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double lo = box.lower_bound(d) - reach, hi = box.upper_bound(d) + reach;
+        const double c = geometry_center[d];
+        if (period[d] > 0)
+          for (double k = std::floor((lo - c) / period[d]) + 1; c + k * period[d] < hi; ++k)
+            coordinates[d].push_back(c + k * period[d]);
+        else if (c > lo && c < hi)
+          coordinates[d].push_back(c);
+        if (coordinates[d].empty())
+          return {};
+      }
+    std::vector<Point<dim>>       result;
+    std::array<std::size_t, dim> choice{};
+    for (;;)
+      {
+        Point<dim> X;
+        for (unsigned int d = 0; d < dim; ++d)
+          X[d] = coordinates[d][choice[d]];
+        double d2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double e =
+              std::max({box.lower_bound(d) - X[d], 0.0, X[d] - box.upper_bound(d)});
+            d2 += e * e;
+          }
+        if (d2 < reach * reach)
+          result.push_back(X);
+        unsigned int d = 0;
+        while (d < dim && ++choice[d] == coordinates[d].size())
+          choice[d++] = 0;
+        if (d == dim)
+          break;
+      }
+    return result;
+  }
+
+  template <int dim>
   void ParticleSet<dim>::parse_parameters(ParameterHandler &prm, const Domain<dim> &domain,
                                           const MPI_Comm comm)
   {
@@ -147,10 +191,21 @@ namespace fdparticle
         particles.push_back(p);
       }
     for (unsigned int k = 0; k < particles.size(); ++k)
-      particles[k].id = k;
+      {
+        particles[k].id = k;
+        for (unsigned int d = 0; d < dim; ++d)
+          if (domain.is_periodic(d))
+            particles[k].period[d] = domain.upper_corner()[d] - domain.lower_corner()[d];
+      }
 
     check_positions(domain, 0.0);
     this->domain = domain;
+    // A centre on the upper face of a periodic direction is the same ball as on the lower.
+    for (Particle<dim> &p : particles)
+      {
+        wrap(p);
+        p.geometry_center = p.position;
+      }
     update_index();
 
     n_block_unknowns = 0;
@@ -166,24 +221,33 @@ namespace fdparticle
   void ParticleSet<dim>::check_positions(const Domain<dim> &domain, const double time) const
   {
     const std::string when = (time == 0.0 ? "" : " at t = " + std::to_string(time));
-    // The ball must lie inside the box. In a wall-bounded direction it may not touch the
-    // wall; in a periodic direction it may not cross the boundary (no periodic images).
+    // The centre must lie in the box (on a periodic face it may). In a wall-bounded
+    // direction the ball may not touch the wall; in a periodic direction it crosses the
+    // faces freely (its images, doc/method.md §12) but must be narrower than the period,
+    // or it would overlap its own image.
     for (const Particle<dim> &p : particles)
       for (unsigned int d = 0; d < dim; ++d)
         {
+          const double      lower = domain.lower_corner()[d], upper = domain.upper_corner()[d];
           const std::string what = "Particle " + std::to_string(p.id + 1) + " (centre " +
                                    std::string(1, "xyz"[d]) + " = " +
                                    std::to_string(p.position[d]) +
                                    ", radius " + std::to_string(p.radius) + ")";
-          AssertThrow(time > 0.0 || (p.position[d] > domain.lower_corner()[d] &&
-                                     p.position[d] < domain.upper_corner()[d]),
+          if (domain.is_periodic(d))
+            {
+              AssertThrow(time > 0.0 || (p.position[d] >= lower && p.position[d] <= upper),
+                          ExcMessage(what + " lies outside the box."));
+              AssertThrow(2 * p.radius < upper - lower,
+                          ExcMessage(what + " is wider than the periodic box in " +
+                                     std::string(1, "xyz"[d]) +
+                                     " and would overlap its own periodic image."));
+              continue;
+            }
+          AssertThrow(time > 0.0 || (p.position[d] > lower && p.position[d] < upper),
                       ExcMessage(what + " lies outside the box."));
-          AssertThrow(p.position[d] - p.radius > domain.lower_corner()[d] &&
-                        p.position[d] + p.radius < domain.upper_corner()[d],
-                      ExcMessage(what + (domain.is_periodic(d) ?
-                                           " crosses a periodic boundary of the box" :
-                                           " overlaps a wall of the box") +
-                                 when + (time == 0.0 ? "." : " (see subsection Wall repulsion).")));
+          AssertThrow(p.position[d] - p.radius > lower && p.position[d] + p.radius < upper,
+                      ExcMessage(what + " overlaps a wall of the box" + when +
+                                 (time == 0.0 ? "." : " (see subsection Wall repulsion).")));
         }
     std::vector<Point<dim>> x;
     std::vector<double>     r;
@@ -231,8 +295,8 @@ namespace fdparticle
   std::vector<unsigned int> ParticleSet<dim>::meeting(const BoundingBox<dim> &box) const
   {
     Assert(index_is_current(), ExcMessage("The particle index is out of date."));
-    // A ball meeting the box has its centre within R_max of it. Balls do not cross a
-    // periodic boundary (check_positions), so the box needs no periodic image.
+    // A ball meeting the box has its centre within R_max of it; past a periodic face the
+    // index wraps around, where the images of the balls on the other side are.
     Point<dim> lower = box.get_boundary_points().first, upper = box.get_boundary_points().second;
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -327,12 +391,29 @@ namespace fdparticle
         const Point<dim> x_new = p.position_after_step(c);
         p.position_old = p.position;
         p.position = x_new;
+        wrap(p);
         p.orientation = RigidBody<dim>::rotate(p.orientation, p.omega, time.next_step());
         p.velocity_old2 = p.velocity_old;
         p.velocity_old = p.velocity;
         p.omega_old2 = p.omega_old;
         p.omega_old = p.omega;
       }
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::wrap(Particle<dim> &p) const
+  {
+    // X^n and X^{n−1} move together, so the BDF formula and the extrapolation of the next
+    // step see the same motion. The geometry centre of the step just taken stays: every
+    // geometric question is asked of all images.
+    for (unsigned int d = 0; d < dim; ++d)
+      if (p.period[d] > 0)
+        {
+          const double shift =
+            p.period[d] * std::floor((p.position[d] - domain.lower_corner()[d]) / p.period[d]);
+          p.position[d] -= shift;
+          p.position_old[d] -= shift;
+        }
   }
 
   template <int dim>
@@ -378,6 +459,8 @@ namespace fdparticle
     update_index();
   }
 
+  template struct Particle<2>;
+  template struct Particle<3>;
   template class ParticleSet<2>;
   template class ParticleSet<3>;
 } // namespace fdparticle

@@ -20,7 +20,9 @@ namespace fdparticle
                         "Radius of each ball, or 'min, max': radii uniform in [min, max].");
       prm.declare_entry("Density", "2", Patterns::Double(0), "Density of each ball.");
       prm.declare_entry("Lower corner", "", Patterns::Anything(),
-                        "Lower corner of the sub-box the balls lie in; empty: the box.");
+                        "Lower corner of the sub-box the balls lie in; empty: the box. "
+                        "Where the sub-box spans a periodic direction the centres may lie "
+                        "anywhere in it and the balls cross its faces.");
       prm.declare_entry("Upper corner", "", Patterns::Anything(),
                         "Upper corner of the sub-box; empty: the box.");
       prm.declare_entry("Minimum gap", "0", Patterns::Double(0),
@@ -94,11 +96,19 @@ namespace fdparticle
     for (unsigned int n = 0; n < n_balls; ++n)
       {
         const double r = min_radius + (max_radius - min_radius) * uniform();
-        // The centres that keep the ball in the sub-box, off the walls by the gap and
-        // inside a periodic direction (a ball may not cross a periodic boundary).
+        // The centres that keep the ball in the sub-box and off the walls by the gap. A
+        // sub-box that spans a periodic direction has no faces there: the ball may cross
+        // it (its images), so every centre is allowed and the suspension is uniform.
         Point<dim> from, to;
         for (unsigned int d = 0; d < dim; ++d)
           {
+            if (domain.is_periodic(d) && lower[d] == domain.lower_corner()[d] &&
+                upper[d] == domain.upper_corner()[d])
+              {
+                from[d] = lower[d];
+                to[d] = upper[d];
+                continue;
+              }
             const double wall_gap = domain.is_periodic(d) ? 0.0 : min_gap;
             from[d] = std::max(lower[d], domain.lower_corner()[d] + wall_gap) + r;
             to[d] = std::min(upper[d], domain.upper_corner()[d] - wall_gap) - r;

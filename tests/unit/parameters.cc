@@ -303,11 +303,11 @@ end
     const std::string P = "Particles/Particles";
     check_rejected<2>(P, "5, 1 : 0.25 : 1", "outside the box");
     check_rejected<2>(P, "0, -0.5 : 0.25 : 1", "outside the box");
-    check_rejected<3>(P, "0.5, 1, 3 : 0.2 : 1", "outside the box"); // on the boundary
+    check_rejected<3>(P, "0.5, 1, 3.01 : 0.2 : 1", "outside the box"); // past a periodic face
     check_rejected<2>(P, "0.9, 1 : 0.25 : 1", "overlaps a wall");
     check_rejected<2>(P, "0, 3.75 : 0.25 : 1", "overlaps a wall"); // touching counts
     check_rejected<3>(P, "0.5, 0.15, 1.5 : 0.2 : 1", "overlaps a wall");
-    check_rejected<3>(P, "0.05, 1, 1.5 : 0.1 : 1", "crosses a periodic boundary");
+    check_rejected<3>(P, "0.5, 1, 1.5 : 0.5 : 1", "would overlap its own periodic image");
     check_rejected<2>(P, "0, 1 : 0.3 : 1 ; 0.4, 1.2 : 0.3 : 1", "Particles 1 and 2 overlap");
     check_rejected<3>(P, "0.5,1,1.5:0.2:2; 0.5,0.5,0.5:0.1:3; 0.5,1.3,1.5:0.15:1",
                       "Particles 1 and 3 overlap");

@@ -162,7 +162,8 @@ namespace
     check(smallest_gap(set, domain) >= gap * (1 - 1e-12),
           "no two balls closer than the minimum gap (all pairs, nearest periodic image)",
           sci(smallest_gap(set, domain)));
-    bool in_sub_box = true, off_walls = true, radii = true, free = true;
+    bool         in_sub_box = true, off_walls = true, radii = true, free = true;
+    unsigned int n_crossing = 0;
     for (unsigned int k = 1; k < set.size(); ++k)
       {
         const Particle<dim> &p = set[k];
@@ -171,15 +172,25 @@ namespace
         in_sub_box = in_sub_box && p.position[1] - p.radius >= 0.5;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            const double wall = domain.is_periodic(d) ? 0 : gap;
-            off_walls = off_walls && p.position[d] - p.radius >= domain.lower_corner()[d] + wall &&
-                        p.position[d] + p.radius <= domain.upper_corner()[d] - wall;
+            const double lower = domain.lower_corner()[d], upper = domain.upper_corner()[d];
+            // The sub-box spans the periodic directions: centres anywhere, balls across.
+            if (domain.is_periodic(d))
+              {
+                off_walls = off_walls && p.position[d] >= lower && p.position[d] < upper;
+                n_crossing += (p.position[d] - p.radius < lower || p.position[d] + p.radius > upper);
+              }
+            else
+              off_walls = off_walls && p.position[d] - p.radius >= lower + gap &&
+                          p.position[d] + p.radius <= upper - gap;
           }
       }
     check(radii, "radii in [min, max], density as given");
     check(free, "random balls are free");
     check(in_sub_box, "balls inside the sub-box");
-    check(off_walls, "walls kept at the minimum gap, periodic boundaries not crossed");
+    check(off_walls, "walls kept at the minimum gap, centres in the box");
+    if (!periodic.empty())
+      check(n_crossing > 0, "balls cross the periodic faces",
+            std::to_string(n_crossing) + " crossings");
     parse<dim>(periodic, random(7, count), same, domain);
     parse<dim>(periodic, random(8, count), other, domain);
     double same_difference = 0, other_difference = 0;

@@ -56,7 +56,7 @@ namespace
       const Point<dim> center = 0.5 * (lower + upper);
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->center().distance(center) < 1e-12)
-          return refinement.in_band(cell, particles, domain);
+          return refinement.in_band(cell, particles);
       check(false, "the test's cell exists", "");
       return false;
     }
@@ -65,7 +65,7 @@ namespace
     void adapt()
     {
       for (unsigned int pass = 0; pass <= refinement.levels(); ++pass)
-        if (refinement.mark(tria, particles, domain, 0))
+        if (refinement.mark(tria, particles, 0))
           tria.execute_coarsening_and_refinement();
     }
 

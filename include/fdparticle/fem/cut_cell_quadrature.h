@@ -112,8 +112,8 @@ namespace fdparticle
                                  const ParticleSet<dim> &particles, CellRule &rule) const;
 
     /// Append the rule of box (real coordinates) and the owner of each point (a ball of
-    /// balls, or −1): a box that two balls meet is halved until each piece meets one at
-    /// most, up to max_separation_depth halvings.
+    /// balls, or −1): a box that two balls (or two images of one) meet is halved until
+    /// each piece meets one at most, up to max_separation_depth halvings.
     void append_rules(const BoundingBox<dim> &box, const ParticleSet<dim> &particles,
                       const std::vector<unsigned int> &balls, const unsigned int depth,
                       std::vector<Point<dim>> &points, std::vector<double> &weights,
@@ -121,12 +121,12 @@ namespace fdparticle
 
     /**
      * Append to inside and outside the rules (real coordinates) of the parts of box in and
-     * out of the ball. A box whose closure holds the ball's centre is split first (at the
+     * out of the ball of centre X (the image that meets the box) and radius. A box whose closure holds the ball's centre is split first (at the
      * centre, then in halves), because there the level set has no height direction and
      * deal.II's generator falls back to rules that are wrong by up to 14 % for the Q2
      * integrands (measured on a centre at a cell vertex) and not mirror symmetric.
      */
-    void append_ball_rules(const BoundingBox<dim> &box, const Particle<dim> &particle,
+    void append_ball_rules(const BoundingBox<dim> &box, const Point<dim> &X, const double radius,
                            std::vector<Point<dim>> &inside_points,
                            std::vector<double> &    inside_weights,
                            std::vector<Point<dim>> &outside_points,

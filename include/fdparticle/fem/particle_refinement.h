@@ -33,17 +33,16 @@ namespace fdparticle
     /// Flag cells for one pass of refinement/coarsening; true if any cell was flagged
     /// on any rank. The caller executes it (with its solution transfer).
     bool mark(parallel::distributed::Triangulation<dim> &triangulation,
-              const ParticleSet<dim> &particles, const Domain<dim> &domain,
-              const unsigned int base_level) const;
+              const ParticleSet<dim> &particles, const unsigned int base_level) const;
 
     /// The number of cells once the mesh is adapted to the particles at their present
     /// positions, estimated before building it, to refuse an unaffordable mesh.
     double estimated_cells(const Domain<dim> &domain, const ParticleSet<dim> &particles) const;
 
-    /// Whether the cell (or its image across a periodic boundary) lies within the band
-    /// around some particle surface.
+    /// Whether the cell lies within the band around some particle surface (of any of
+    /// its periodic images).
     bool in_band(const typename Triangulation<dim>::cell_iterator &cell,
-                 const ParticleSet<dim> &particles, const Domain<dim> &domain) const;
+                 const ParticleSet<dim> &particles) const;
 
     /// Cells cut by a particle surface that are not at the finest level (a check).
     unsigned int coarse_cut_cells(const parallel::distributed::Triangulation<dim> &triangulation,

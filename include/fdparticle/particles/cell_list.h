@@ -37,7 +37,7 @@ namespace fdparticle
     void for_each_near(const Point<dim> &x, const Function &f) const;
 
     /// Call f(k) for every point k in the bins that the box [lower, upper] reaches, each
-    /// once (no periodic wrap: the box is taken as it lies).
+    /// once; in a periodic direction a box reaching past a face wraps around.
     template <typename Function>
     void for_each_in_box(const Point<dim> &lower, const Point<dim> &upper,
                          const Function &f) const;
@@ -47,7 +47,10 @@ namespace fdparticle
 
   private:
     using Bin = std::array<long, dim>;
+    /// The bin of x; in a periodic direction that of its image in the box.
     Bin bin_of(const Point<dim> &x) const;
+    /// Index of the bin row of coordinate x in direction d, not wrapped or clamped.
+    long row_of(const double x, const unsigned int d) const;
 
     Point<dim>                               lower;
     Tensor<1, dim>                           length;
@@ -99,40 +102,52 @@ namespace fdparticle
   void CellList<dim>::for_each_in_box(const Point<dim> &box_lower, const Point<dim> &box_upper,
                                       const Function &f) const
   {
-    const Bin first = bin_of(box_lower), last = bin_of(box_upper);
-    double    n_reached = 1;
+    // The distinct bin rows the box reaches in each direction, sorted.
+    std::array<std::vector<long>, dim> rows;
+    double                             n_reached = 1;
     for (unsigned int d = 0; d < dim; ++d)
-      n_reached *= last[d] - first[d] + 1;
-    const auto inside = [&](const Bin &b) {
-      for (unsigned int d = 0; d < dim; ++d)
-        if (b[d] < first[d] || b[d] > last[d])
-          return false;
-      return true;
-    };
+      {
+        const long first = row_of(box_lower[d], d), last = row_of(box_upper[d], d);
+        if (periodic[d])
+          for (long r = first; r <= last && long(rows[d].size()) < n_bins[d]; ++r)
+            rows[d].push_back(((r % n_bins[d]) + n_bins[d]) % n_bins[d]);
+        else
+          for (long r = std::max(first, 0L); r <= std::min(last, n_bins[d] - 1); ++r)
+            rows[d].push_back(r);
+        std::sort(rows[d].begin(), rows[d].end());
+        n_reached *= rows[d].size();
+      }
+    if (n_reached == 0)
+      return;
     // A box over more bins than hold points (a coarse cell, small balls) visits the
     // occupied bins instead of the reached ones.
     if (n_reached > members.size())
       {
         for (const auto &[bin, points] : members)
-          if (inside(bin))
-            for (const unsigned int k : points)
-              f(k);
+          {
+            bool inside = true;
+            for (unsigned int d = 0; d < dim; ++d)
+              inside = inside && std::binary_search(rows[d].begin(), rows[d].end(), bin[d]);
+            if (inside)
+              for (const unsigned int k : points)
+                f(k);
+          }
         return;
       }
-    Bin b = first;
+    std::array<std::size_t, dim> choice{};
     while (true)
       {
+        Bin b;
+        for (unsigned int d = 0; d < dim; ++d)
+          b[d] = rows[d][choice[d]];
         const auto it = members.find(b);
         if (it != members.end())
           for (const unsigned int k : it->second)
             f(k);
         // Next bin, odometer style.
         unsigned int d = 0;
-        while (d < dim && ++b[d] > last[d])
-          {
-            b[d] = first[d];
-            ++d;
-          }
+        while (d < dim && ++choice[d] == rows[d].size())
+          choice[d++] = 0;
         if (d == dim)
           break;
       }

@@ -98,11 +98,27 @@ namespace fdparticle
     /// mesh resolves.
     static constexpr double surface_tolerance = 1e-10;
 
+    /// The box's length in each periodic direction, 0 in the others. A ball that crosses
+    /// a periodic face is also at its images X + Σ_d k_d period_d e_d (k_d integers): the
+    /// geometric questions below are answered for all of them (doc/method.md §12).
+    Tensor<1, dim> period;
+
+    /// x − X to the nearest image of the centre: the arm of a point of the ball.
+    Tensor<1, dim> offset(const Point<dim> &x) const
+    {
+      Tensor<1, dim> r = x - geometry_center;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (period[d] > 0)
+          r[d] -= period[d] * std::round(r[d] / period[d]);
+      return r;
+    }
+
     /// Whether x is in the ball, its surface included (within surface_tolerance).
     bool contains(const Point<dim> &x) const
     {
-      // Squares: the same test without a root, per quadrature point of a cut cell.
-      return (x - geometry_center).norm_square() <
+      // Squares: the same test without a root, per quadrature point of a cut cell. The
+      // nearest image is the only one that can contain x (a ball is narrower than a period).
+      return offset(x).norm_square() <
              radius * radius * (1 + surface_tolerance) * (1 + surface_tolerance);
     }
     /// Whether the ball overlaps the box by more than touching (within surface_tolerance).
@@ -110,18 +126,27 @@ namespace fdparticle
     {
       return distance_to(box) < radius * (1 - surface_tolerance);
     }
-    /// Distance from the centre to the nearest point of box (0 if the centre is inside).
+    /// Distance from the nearest image of the centre to the nearest point of box (0 if
+    /// the centre is inside).
     double distance_to(const BoundingBox<dim> &box) const
     {
+      // The image nearest to the box's middle is, direction by direction, the nearest to
+      // the box: the gap to an interval grows with the distance to its middle.
       double d2 = 0;
       for (unsigned int d = 0; d < dim; ++d)
         {
-          const double c = geometry_center[d];
-          const double e = std::max({box.lower_bound(d) - c, 0.0, c - box.upper_bound(d)});
+          const double lo = box.lower_bound(d), hi = box.upper_bound(d);
+          double       c = geometry_center[d];
+          if (period[d] > 0)
+            c += period[d] * std::round((0.5 * (lo + hi) - c) / period[d]);
+          const double e = std::max({lo - c, 0.0, c - hi});
           d2 += e * e;
         }
       return std::sqrt(d2);
     }
+    /// The images of the centre closer than reach to the box: one unless the ball crosses
+    /// a periodic face and the box reaches both sides of the period.
+    std::vector<Point<dim>> centres_near(const BoundingBox<dim> &box, const double reach) const;
   };
 
   /**
@@ -175,12 +200,13 @@ namespace fdparticle
     /// Copy the particle block into (V, ω) of the free particles, and back.
     void set_unknowns(const Eigen::VectorXd &y);
     Eigen::VectorXd get_unknowns() const;
-    /// Accept the step: move the balls with the BDF formula, rotate, shift the history.
+    /// Accept the step: move the balls with the BDF formula (a centre that leaves the box
+    /// through a periodic face enters on the other side), rotate, shift the history.
     void finish_step(const TimeStepper &time);
 
     /**
-     * Throw a one-sentence error if a ball touches a wall, crosses a periodic boundary or
-     * overlaps another ball (found by PairSearch, O(N)): the fictitious-domain method
+     * Throw a one-sentence error if a ball touches a wall, is wider than a periodic
+     * direction or overlaps another ball (found by PairSearch, O(N)): the fictitious-domain method
      * cannot represent overlapping balls, and past that point the results would be
      * meaningless. The repulsion forces (WallRepulsion, Collisions) keep the balls apart;
      * this is the stop when they are off or too weak. Called after each step (the time
@@ -214,6 +240,8 @@ namespace fdparticle
     std::vector<Point<dim>> indexed_centres;
     double                  largest_radius = 0;
     void                    update_index();
+    /// Move the ball's centre (and its history) by whole periods into [lower, upper).
+    void                    wrap(Particle<dim> &p) const;
     bool                    index_is_current() const;
     AngularVelocityClosure     angular_closure = AngularVelocityClosure::torque_balance;
     unsigned int               n_block_unknowns = 0;

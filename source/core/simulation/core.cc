@@ -83,6 +83,8 @@ namespace fdparticle
   {
     domain.parse_parameters(prm);
     fluid.parse_parameters(prm);
+    for (unsigned int d = 0; d < dim; ++d)
+      fluid.periodic[d] = domain.is_periodic(d);
     particles.parse_parameters(prm, domain, comm);
     time.parse_parameters(prm);
     quadrature.parse_parameters(prm);

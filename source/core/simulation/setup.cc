@@ -185,7 +185,7 @@ namespace fdparticle
     // cell per step, so after the initial passes one pass a step keeps up.
     for (unsigned int pass = 0; pass <= refinement.levels(); ++pass)
       {
-        if (!refinement.mark(triangulation, particles, domain, base_level))
+        if (!refinement.mark(triangulation, particles, base_level))
           return;
         change_mesh(transfer);
       }

@@ -25,7 +25,7 @@ namespace fdparticle
     const Tensor<2, dim> &           gu = s.grad_u[s.q];
 
     // Residual: the rigidity (F3) in P_k, and the −<λ, v> term of the momentum equation.
-    const Tensor<1, dim> r = s.x - P.geometry_center;
+    const Tensor<1, dim> r = P.offset(s.x);
     const Tensor<1, dim> du = s.u[s.q] - P.velocity - RB::cross(P.omega, r);
     const Tensor<2, dim> dgu = gu - RB::rotation_gradient(P.omega);
     for (const unsigned int i : s.velocity_dofs)
