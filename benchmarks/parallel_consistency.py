@@ -161,7 +161,8 @@ def place_particles(rng, dim, extent, h_coarse, h_fine, count, stack):
             balls = []
             for _ in range(n):
                 r = max(rng.uniform(*RADIUS_RANGE), MIN_RADIUS_CELLS * h_coarse)
-                # The same gap from a periodic boundary, which the ball may not cross.
+                # The same gap from a periodic boundary: a scene stays valid whichever
+                # kind each boundary is (balls across periodic faces: periodic_crossing_*).
                 margin = r + wall_gap
                 if any(2 * margin >= e for e in extent):
                     break

@@ -5,9 +5,9 @@
 # velocity of the frozen configuration, U = mean particle velocity − mean velocity of the
 # box (the frame of zero volume flux), against Stokes' U0 = 2 Δρ g a² / (9 μ), at solid
 # fractions 0.052 (box 10) and 0.102 (box 8) at 2 cells per diameter, 0.102 also at 3.
-# The spheres may not cross the periodic faces (doc/method.md §12), so the suspension is
-# not run in time: each configuration is one sample of a well-mixed suspension (three
-# seeds at d/h = 2).
+# Each configuration is frozen (one step): one sample of a well-mixed suspension (three
+# seeds at d/h = 2). The centres fill the whole box, the spheres crossing its periodic
+# faces (doc/method.md §12); doc/particles.md says which rows predate that.
 # Each box and mesh is also run with one sphere (four random places at d/h = 2, two at 3),
 # whose exact U/U0 is the Sangani–Acrivos series for a simple cubic array
 # (doc/references/README.md): measured over exact is the discretization's factor, by

@@ -139,24 +139,41 @@ def mirror_vector(text, a):
     return ", ".join(repr(v) for v in values)
 
 
-def mirror_prm(text, axis):
-    """The prm text of the scene mirrored across the box's mid-plane normal to axis."""
-    a = AXES.index(axis)
-    entries = testlib.prm_entries(text)
+def box_range(entries, a, directive):
+    """The box's lower and upper coordinate along axis a."""
     if "Geometry/Lower corner" not in entries or "Geometry/Upper corner" not in entries:
-        raise SystemExit("test-mirror needs Geometry/Lower corner and Upper corner in the prm")
-    lo = float(entries["Geometry/Lower corner"].split(",")[a])
-    hi = float(entries["Geometry/Upper corner"].split(",")[a])
-    dim = int(entries.get("Dimension", "3"))
+        raise SystemExit(f"{directive} needs Geometry/Lower corner and Upper corner in the prm")
+    return (float(entries["Geometry/Lower corner"].split(",")[a]),
+            float(entries["Geometry/Upper corner"].split(",")[a]))
+
+
+def moved_particles(entries, a, move, transform_fields=None):
+    """The Particles/Particles entries with coordinate a of each centre mapped by move
+    (and the fields after the centre by transform_fields), and their radii."""
     particles, radii = [], []
     for entry in entries.get("Particles/Particles", "").split(";"):
         if not entry.strip():
             continue
         fields = [f.strip() for f in entry.split(":")]
         centre = [float(v) for v in fields[0].split(",")]
-        centre[a] = lo + hi - centre[a]
+        centre[a] = move(centre[a])
         radii.append(float(fields[1]))
         fields[0] = ", ".join(repr(v) for v in centre)
+        if transform_fields:
+            transform_fields(fields)
+        particles.append(" : ".join(fields))
+    # Later 'set' lines override earlier ones.
+    return "\nsubsection Particles\n  set Particles = " + "; ".join(particles) + "\nend\n", radii
+
+
+def mirror_prm(text, axis):
+    """The prm text of the scene mirrored across the box's mid-plane normal to axis."""
+    a = AXES.index(axis)
+    entries = testlib.prm_entries(text)
+    lo, hi = box_range(entries, a, "test-mirror")
+    dim = int(entries.get("Dimension", "3"))
+
+    def mirror_motion(fields):
         if len(fields) > 4:  # prescribed: a velocity, and maybe an angular velocity
             fields[4] = mirror_vector(fields[4], a)
             if len(fields) > 5:
@@ -166,7 +183,8 @@ def mirror_prm(text, axis):
                 else:
                     w = [wi if i == a else -wi for i, wi in enumerate(w)]
                 fields[5] = ", ".join(repr(v) for v in w)
-        particles.append(" : ".join(fields))
+
+    extra, radii = moved_particles(entries, a, lambda x: lo + hi - x, mirror_motion)
     walls = []
     for entry in entries.get("Boundary conditions/Wall velocities", "").split(";"):
         if not entry.strip():
@@ -175,8 +193,6 @@ def mirror_prm(text, axis):
         if face[0] == axis:
             face = axis + ("+" if face[1] == "-" else "-")
         walls.append(f"{face}: {mirror_vector(vector, a)}")
-    # Later 'set' lines override earlier ones.
-    extra = "\nsubsection Particles\n  set Particles = " + "; ".join(particles) + "\nend\n"
     extra += "subsection Boundary conditions\n  set Wall velocities = " + "; ".join(walls) + "\nend\n"
     if "Gravity" in entries:
         extra += "set Gravity = " + mirror_vector(entries["Gravity"], a) + "\n"
@@ -257,21 +273,10 @@ def shift_prm(text, axis, distance):
     centre wrapped into the box; also the box's size along axis and the smallest radius."""
     a = AXES.index(axis)
     entries = testlib.prm_entries(text)
-    lo = float(entries["Geometry/Lower corner"].split(",")[a])
-    hi = float(entries["Geometry/Upper corner"].split(",")[a])
+    lo, hi = box_range(entries, a, "test-shift")
     if axis not in entries.get("Geometry/Periodic directions", ""):
         raise SystemExit(f"test-shift needs {axis} among Geometry/Periodic directions")
-    particles, radii = [], []
-    for entry in entries.get("Particles/Particles", "").split(";"):
-        if not entry.strip():
-            continue
-        fields = [f.strip() for f in entry.split(":")]
-        centre = [float(v) for v in fields[0].split(",")]
-        centre[a] = lo + (centre[a] + distance - lo) % (hi - lo)
-        radii.append(float(fields[1]))
-        fields[0] = ", ".join(repr(v) for v in centre)
-        particles.append(" : ".join(fields))
-    extra = "\nsubsection Particles\n  set Particles = " + "; ".join(particles) + "\nend\n"
+    extra, radii = moved_particles(entries, a, lambda x: lo + (x + distance - lo) % (hi - lo))
     return text + extra, hi - lo, min(radii, default=hi - lo)
 
 
@@ -286,6 +291,19 @@ def compare_shifted(first_dir, shifted_dir, axis, distance, period, radius, tol)
 
     return compare_transformed(first_dir, shifted_dir, f"shift {axis}", expected_value,
                                [period], radius, tol)
+
+
+def run_variant(opts, prm_text, name, ranks, suffix):
+    """Run a variant of the scene, given as its prm text, into ranks-N-SUFFIX: the output
+    directory and the exit code."""
+    v_dir = os.path.join(opts.work, f"ranks-{ranks}-{suffix}")
+    v_prm = os.path.join(opts.work, f"{name}-ranks-{ranks}-{suffix}.prm")
+    with open(v_prm, "w") as f:
+        f.write(prm_text + f"\nsubsection Output\n  set Directory = {v_dir}\nend\n")
+    result = run(opts.executable, [v_prm], ranks, opts.work)
+    sys.stdout.write(result.stdout[-2000:])
+    sys.stderr.write(result.stderr[-2000:])
+    return v_dir, result.returncode
 
 
 def check_restart(opts, text, d, ranks, full_dir):
@@ -323,16 +341,10 @@ def check_other_solver(opts, text, d, name, ranks, first_dir):
     """Run the scene with the other linear solver; mismatches of particles.csv."""
     entries = testlib.prm_entries(text)
     other = "direct" if entries.get("Solver/Linear solver") == "iterative" else "iterative"
-    o_dir = first_dir + f"-{other}"
-    o_prm = os.path.join(opts.work, f"{name}-ranks-{ranks}-{other}.prm")
-    with open(o_prm, "w") as f:
-        f.write(text + f"\nsubsection Solver\n  set Linear solver = {other}\nend\n"
-                f"subsection Output\n  set Directory = {o_dir}\nend\n")
-    result = run(opts.executable, [o_prm], ranks, opts.work)
-    sys.stdout.write(result.stdout[-2000:])
-    sys.stderr.write(result.stderr[-2000:])
-    if result.returncode != 0:
-        return [f"the run with the {other} solver exited with {result.returncode}"]
+    o_dir, code = run_variant(opts, text + f"\nsubsection Solver\n  set Linear solver = {other}\nend\n",
+                              name, ranks, other)
+    if code != 0:
+        return [f"the run with the {other} solver exited with {code}"]
     rel, abs_tol = (float(x) for x in d["test-solvers"].split()[:2])
     return [f"{other} solver: {p}" for p in
             compare_csv(os.path.join(o_dir, "particles.csv"),
@@ -409,32 +421,20 @@ def main():
             tol = float(d.get("test-mirror-tolerance", "1e-10"))
             for axis in (x.strip() for x in d["test-mirror"].split(",")):
                 mirrored, lo, hi, radius = mirror_prm(text, axis)
-                m_dir = out_dir + f"-mirror-{axis}"
-                m_prm = os.path.join(opts.work, f"{name}-ranks-{ranks}-mirror-{axis}.prm")
-                with open(m_prm, "w") as f:
-                    f.write(mirrored + f"\nsubsection Output\n  set Directory = {m_dir}\nend\n")
-                result = run(opts.executable, [m_prm], ranks, opts.work)
-                sys.stdout.write(result.stdout[-2000:])
-                sys.stderr.write(result.stderr[-2000:])
-                if result.returncode != 0:
-                    failures.append(f"the run mirrored in {axis} exited with {result.returncode}")
+                m_dir, code = run_variant(opts, mirrored, name, ranks, f"mirror-{axis}")
+                if code != 0:
+                    failures.append(f"the run mirrored in {axis} exited with {code}")
                     continue
                 failures += compare_mirrored(out_dir, m_dir, axis, lo, hi, radius, tol)
         for shift in (s.split() for s in d.get("test-shift", "").split(",") if s.strip()):
             axis, distance = shift[0], float(shift[1])
             tol = float(d.get("test-shift-tolerance", "1e-10"))
             shifted, period, radius = shift_prm(text, axis, distance)
-            s_dir = out_dir + f"-shift-{axis}"
-            s_prm = os.path.join(opts.work, f"{name}-ranks-{ranks}-shift-{axis}.prm")
-            with open(s_prm, "w") as f:
-                f.write(shifted + f"\nsubsection Output\n  set Directory = {s_dir}\nend\n")
-            result = run(opts.executable, [s_prm], ranks, opts.work)
-            sys.stdout.write(result.stdout[-2000:])
-            sys.stderr.write(result.stderr[-2000:])
-            if result.returncode != 0:
-                failures.append(f"the run shifted in {axis} exited with {result.returncode}")
-            else:
-                failures += compare_shifted(out_dir, s_dir, axis, distance, period, radius, tol)
+            s_dir, code = run_variant(opts, shifted, name, ranks, f"shift-{axis}")
+            if code != 0:
+                failures.append(f"the run shifted in {axis} exited with {code}")
+                continue
+            failures += compare_shifted(out_dir, s_dir, axis, distance, period, radius, tol)
         solver_ranks = d.get("test-solvers", "").split()[2:]
         if "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks):
             failures += check_other_solver(opts, text, d, name, ranks, out_dir)

@@ -56,6 +56,11 @@ namespace fdparticle
     // Written so that a NaN residual enters the loop (NaN <= target is false) and is
     // caught there.
     double previous = residual, forcing = max_forcing;
+    // A linear problem takes one exact correction with the full step. If the residual is
+    // still above the target after it, a force that is not linear in the unknowns acts (a
+    // contact or lubrication force, evaluated where the particles end the step): Newton
+    // goes on as for a nonlinear problem.
+    bool linear = problem.linear;
     while (!(residual <= target))
       {
         result.residual = residual;
@@ -83,7 +88,7 @@ namespace fdparticle
               forcing = std::max(forcing, safeguard);
           }
         forcing = std::min(max_forcing, forcing);
-        if (problem.linear)
+        if (linear)
           forcing = 0;
         forcing = std::max(forcing, target_margin * target / residual);
         try
@@ -100,16 +105,14 @@ namespace fdparticle
                         "the linear solve failed: " + ParameterTools::one_line_message(e));
           }
         ++result.iterations;
-        if (problem.linear)
+        if (linear)
           {
             problem.apply_update(1.0);
+            previous = residual;
             residual = problem.assemble(false);
             if (residual <= target)
               break;
-            // Still above the target after an exact solve: a force that is not linear in
-            // the unknowns acts (a contact or lubrication force, evaluated where the
-            // particles end the step), so Newton goes on, with exact solves and the full
-            // step (the caught cases above stop a residual that is not finite or grows).
+            linear   = false;
             residual = problem.assemble(true);
             continue;
           }

@@ -16,7 +16,7 @@ namespace fdparticle
    * assemble a new Jacobian, how far to step (backtracking line search) and when to give
    * up. A linear problem (Stokes) is the special case of one correction with the full step,
    * unless a force that is not linear (contacts in a Stokes step) leaves the residual above
-   * the target: then exact corrections with full steps follow until it is met.
+   * the target: then Newton goes on as for a nonlinear problem.
    *
    * Modified Newton: the Jacobian (and the linear solver's operator built from it) is kept
    * while each iteration still cuts the residual by jacobian_reuse_reduction; "Reuse
@@ -67,8 +67,8 @@ namespace fdparticle
       std::function<void(double theta)> apply_update;
       /// Where the residual is largest, for the failure messages (may be empty).
       std::function<std::string()> describe_residual;
-      /// A linear problem: each solve exact, full steps, no line search; one correction
-      /// unless the residual is still above the target after it.
+      /// A linear problem: one exact correction with the full step, no line search; if the
+      /// residual is still above the target after it, Newton goes on as for a nonlinear one.
       bool linear = false;
     };
 
