@@ -3,7 +3,7 @@
 the same particles.csv, number by number.
 
 Each scene is drawn from (--seed, scene index): 2D or 3D box, 1-3 balls (non-overlapping,
-clear of the walls and of the periodic boundaries), their densities and motion, base mesh,
+clear of the walls, anywhere along a periodic direction), their densities and motion, base mesh,
 Global refinements, Particle refinement levels (--levels, 0-2), Stokes or Navier-Stokes,
 periodic directions, cut-cell rule, time step, scheme and solver options, and a number of
 steps (--steps, --steps-3d). It is written as WORK/scene-K/scene.prm and run on every rank
@@ -149,26 +149,30 @@ def choose_mesh(rng, dim, level_range):
     return extent, subdivisions, global_refinements, levels, h_coarse, h_coarse / 2 ** levels
 
 
-def place_particles(rng, dim, extent, h_coarse, h_fine, count, stack):
-    """Centres and radii, clear of walls and periodic boundaries and of each other; unless
-    stack, laterally apart (across gravity, along -y), so that balls settling at different
-    speeds pass each other."""
+def place_particles(rng, dim, extent, periodic, h_coarse, h_fine, count, stack):
+    """Centres and radii, clear of the walls and of each other (to the nearest periodic
+    image); in a periodic direction anywhere, a ball may cross the faces. Unless stack,
+    laterally apart (across gravity, along -y), so that balls settling at different speeds
+    pass each other."""
     wall_gap = min(WALL_GAP_CELLS * h_fine, MAX_GAP)
     pair_gap = max(min(PAIR_GAP_CELLS * h_fine, MAX_GAP), MIN_PAIR_GAP)
     apart = list(range(dim)) if stack else [d for d in range(dim) if d != 1]
+
+    def separation(a, b):
+        return math.hypot(*[(a[d] - b[d]) - (extent[d] * round((a[d] - b[d]) / extent[d])
+                                             if periodic[d] else 0.0) for d in apart])
+
     for n in range(count, 0, -1):
         for _ in range(PLACEMENT_ATTEMPTS):
             balls = []
             for _ in range(n):
                 r = max(rng.uniform(*RADIUS_RANGE), MIN_RADIUS_CELLS * h_coarse)
-                # The same gap from a periodic boundary: a scene stays valid whichever
-                # kind each boundary is (balls across periodic faces: periodic_crossing_*).
                 margin = r + wall_gap
                 if any(2 * margin >= e for e in extent):
                     break
-                c = [rng.uniform(margin, e - margin) for e in extent]
-                if all(math.dist([c[d] for d in apart], [b[0][d] for d in apart])
-                       > r + b[1] + pair_gap for b in balls):
+                c = [rng.uniform(0.0, e) if p else rng.uniform(margin, e - margin)
+                     for e, p in zip(extent, periodic)]
+                if all(separation(c, b[0]) > r + b[1] + pair_gap for b in balls):
                     balls.append((c, r))
             if len(balls) == n:
                 return balls
@@ -189,7 +193,7 @@ def make_scene(seed, index, dim, steps_range, level_range):
     # An adapted mesh may get longer steps below: stack balls only if even those keep the
     # run short.
     longest = steps * (max(TIME_STEPS) if levels > 0 else dt)
-    balls = place_particles(rng, dim, extent, h_coarse, h_fine, rng.randint(1, 3),
+    balls = place_particles(rng, dim, extent, periodic, h_coarse, h_fine, rng.randint(1, 3),
                             stack=longest <= SHORT_RUN)
 
     densities, motions, directions = [], [], []

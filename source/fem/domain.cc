@@ -231,6 +231,16 @@ namespace fdparticle
   }
 
   template <int dim>
+  Tensor<1, dim> Domain<dim>::period() const
+  {
+    Tensor<1, dim> L;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (periodic[d])
+        L[d] = upper[d] - lower[d];
+    return L;
+  }
+
+  template <int dim>
   bool Domain<dim>::is_wall(const types::boundary_id face) const
   {
     return face < 2 * dim && !periodic[face / 2];

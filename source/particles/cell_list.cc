@@ -15,6 +15,7 @@ namespace fdparticle
   CellList<dim>::CellList(const Domain<dim> &domain, const double width)
     : lower(domain.lower_corner())
     , length(domain.upper_corner() - domain.lower_corner())
+    , period(domain.period())
   {
     Assert(width > 0, ExcInternalError());
     for (unsigned int d = 0; d < dim; ++d)
@@ -56,11 +57,7 @@ namespace fdparticle
   template <int dim>
   Tensor<1, dim> CellList<dim>::offset(const Point<dim> &a, const Point<dim> &b) const
   {
-    Tensor<1, dim> o = a - b;
-    for (unsigned int d = 0; d < dim; ++d)
-      if (periodic[d])
-        o[d] -= length[d] * std::round(o[d] / length[d]);
-    return o;
+    return Domain<dim>::nearest_image(a - b, period);
   }
 
   template class CellList<2>;

@@ -121,14 +121,7 @@ namespace fdparticle
         Point<dim> X;
         for (unsigned int d = 0; d < dim; ++d)
           X[d] = coordinates[d][choice[d]];
-        double d2 = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double e =
-              std::max({box.lower_bound(d) - X[d], 0.0, X[d] - box.upper_bound(d)});
-            d2 += e * e;
-          }
-        if (d2 < reach * reach)
+        if (distance(box, X) < reach)
           result.push_back(X);
         unsigned int d = 0;
         while (d < dim && ++choice[d] == coordinates[d].size())
@@ -192,10 +185,8 @@ namespace fdparticle
       }
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
-        particles[k].id = k;
-        for (unsigned int d = 0; d < dim; ++d)
-          if (domain.is_periodic(d))
-            particles[k].period[d] = domain.upper_corner()[d] - domain.lower_corner()[d];
+        particles[k].id     = k;
+        particles[k].period = domain.period();
       }
 
     check_positions(domain, 0.0);

@@ -3,12 +3,14 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/lac/affine_constraints.h>
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace fdparticle
@@ -78,6 +80,17 @@ namespace fdparticle
     std::vector<WallGap> walls_near(const Point<dim> &x, const double r, const double reach) const;
 
     bool                 is_periodic(const unsigned int direction) const;
+    /// The box's length in each periodic direction, 0 in the wall-bounded ones.
+    Tensor<1, dim>       period() const;
+    /// r shifted by whole periods (period as given by period()) to its shortest image:
+    /// the nearest-image rule of every distance in a periodic box (doc/method.md §12).
+    static Tensor<1, dim> nearest_image(Tensor<1, dim> r, const Tensor<1, dim> &period)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (period[d] > 0)
+          r[d] -= period[d] * std::round(r[d] / period[d]);
+      return r;
+    }
     bool                 is_wall(const types::boundary_id face) const;
     Tensor<1, dim>       wall_velocity(const types::boundary_id face) const;
     const Point<dim> &   lower_corner() const { return lower; }

@@ -55,6 +55,7 @@ namespace fdparticle
     Point<dim>                               lower;
     Tensor<1, dim>                           length;
     std::array<bool, dim>                    periodic{};
+    Tensor<1, dim>                           period; ///< Domain::period()
     std::array<long, dim>                    n_bins{};
     std::map<Bin, std::vector<unsigned int>> members;
   };

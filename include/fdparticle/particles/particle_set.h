@@ -106,11 +106,7 @@ namespace fdparticle
     /// x − X to the nearest image of the centre: the arm of a point of the ball.
     Tensor<1, dim> offset(const Point<dim> &x) const
     {
-      Tensor<1, dim> r = x - geometry_center;
-      for (unsigned int d = 0; d < dim; ++d)
-        if (period[d] > 0)
-          r[d] -= period[d] * std::round(r[d] / period[d]);
-      return r;
+      return Domain<dim>::nearest_image(x - geometry_center, period);
     }
 
     /// Whether x is in the ball, its surface included (within surface_tolerance).
@@ -132,21 +128,29 @@ namespace fdparticle
     {
       // The image nearest to the box's middle is, direction by direction, the nearest to
       // the box: the gap to an interval grows with the distance to its middle.
-      double d2 = 0;
+      Point<dim> X = geometry_center;
       for (unsigned int d = 0; d < dim; ++d)
-        {
-          const double lo = box.lower_bound(d), hi = box.upper_bound(d);
-          double       c = geometry_center[d];
-          if (period[d] > 0)
-            c += period[d] * std::round((0.5 * (lo + hi) - c) / period[d]);
-          const double e = std::max({lo - c, 0.0, c - hi});
-          d2 += e * e;
-        }
-      return std::sqrt(d2);
+        if (period[d] > 0)
+          X[d] += period[d] *
+                  std::round((0.5 * (box.lower_bound(d) + box.upper_bound(d)) - X[d]) / period[d]);
+      return distance(box, X);
     }
     /// The images of the centre closer than reach to the box: one unless the ball crosses
     /// a periodic face and the box reaches both sides of the period.
     std::vector<Point<dim>> centres_near(const BoundingBox<dim> &box, const double reach) const;
+
+  private:
+    /// Distance from x to the nearest point of box (0 if x is inside).
+    static double distance(const BoundingBox<dim> &box, const Point<dim> &x)
+    {
+      double d2 = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double e = std::max({box.lower_bound(d) - x[d], 0.0, x[d] - box.upper_bound(d)});
+          d2 += e * e;
+        }
+      return std::sqrt(d2);
+    }
   };
 
   /**
