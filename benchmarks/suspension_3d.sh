@@ -18,9 +18,8 @@
 #
 # Scene: μ = 10⁴, ρ_f = 1, ρ_s = 2, g = 1, Δt = 1 (BDF1). The viscous time of the box,
 # ρ_f L²/(4π² μ) < 3e-4, and of a sphere, ρ_s a²/μ = 5e-5, are far below Δt, so the one
-# step is the Stokes solution of the configuration; the spheres move 6e-6 in it. A uniform
-# body force f = −(ρ_f + φ Δρ) g balances the weight of fluid and spheres: a periodic box
-# has no bottom, and without it the whole box would accelerate.
+# step is the Stokes solution of the configuration; the spheres move 6e-6 in it (the scene:
+# benchmarks/suspension_scene.sh).
 #
 # Writes doc/suspension_3d.csv (one row per run: time of the step, peak memory of the
 # largest rank) and doc/suspension_3d.png.
@@ -37,6 +36,7 @@ default_cases="100 8 16 1;100 8 16 2;100 8 16 3;1 8 16 1;1 8 16 2;1 8 16 3;1 8 1
 25 5 10 1;25 5 10 2;25 5 10 3;25 5 10 4;25 5 10 5;25 5 10 6;\
 1 5 10 1;1 5 10 2;1 5 10 3;1 5 10 4;200 10 20 1;200 10 20 2;\
 100 8 24 1;1 8 24 1;1 8 24 2"
+source "$top/benchmarks/suspension_scene.sh"
 mkdir -p "$work"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 IFS=';' read -ra cases <<< "${CASES:-$default_cases}"
@@ -44,49 +44,7 @@ for case in "${cases[@]}"; do
   read -r n box cells seed <<< "$case"
   name="n${n}_L${box}_c${cells}_s${seed}"
   [ -s "$work/$name/statistics.csv" ] && continue
-  # Solid fraction and the body force that balances the weight of fluid and spheres.
-  phi=$(/usr/bin/python3 -c "import math; print(repr($n * 4 / 3 * math.pi * 0.125 / $box ** 3))")
-  force=$(/usr/bin/python3 -c "print(repr(1 + $phi))")
-  cat > "$work/$name.prm" <<PRM
-set Dimension = 3
-set Gravity   = 0, 0, -1
-subsection Geometry
-  set Lower corner        = 0, 0, 0
-  set Upper corner        = $box, $box, $box
-  set Subdivisions        = $cells, $cells, $cells
-  set Periodic directions = x, y, z
-end
-subsection Fluid
-  set Density    = 1
-  set Viscosity  = 10000
-  set Convection = false
-  set Body force = 0, 0, $force
-end
-subsection Particles
-  subsection Random particles
-    set Count       = $n
-    set Radius      = 0.5
-    set Density     = 2
-    set Minimum gap = 0.25
-    set Seed        = $seed
-  end
-end
-subsection Quadrature
-  set Cut cells = level set
-end
-subsection Solver
-  set Linear solver = iterative
-end
-subsection Time
-  set Time step = 1
-  set End time  = 1
-  set Scheme    = BDF1
-end
-subsection Output
-  set Directory    = $work/$name
-  set VTU interval = 0
-end
-PRM
+  suspension_prm "$n" "$box" "$cells" "$seed" iterative 1 1 BDF1 "$work/$name" > "$work/$name.prm"
   echo "$np" > "$work/$name.ranks"
   /usr/bin/time -f "%M" -o "$work/$name.mem" \
     mpirun --oversubscribe -np "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1 ||

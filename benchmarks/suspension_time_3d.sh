@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# A random suspension settling in time (doc/particles.md, "A settling suspension in
+# time"): the scene of benchmarks/suspension_scene.sh with N = 25 spheres in a triply
+# periodic cube of edge 5 (solid fraction 0.105), 2 cells per diameter, BDF2 steps of
+# Δt = 8000, each 0.044 d at Stokes' U0 = 2 Δρ g a²/(9 μ). The frozen benchmark (benchmarks/suspension_3d.sh) solves
+# one configuration; here the spheres move through the periodic faces and the
+# configuration evolves, as in the experiments Richardson and Zaki's (1 − φ)^4.65 fits.
+# Contacts: the repulsion (Collisions/Model = repulsion) with a Range ρ of 0.1 d, well
+# below the mean gap of about 0.7 d, and a force at contact K of 10 apparent weights W:
+# two spheres approaching at U0 stop where the force is about W, two thirds of the range
+# from touching. The contact acts at X^{n+1} = X^n + (2Δt/3) V, so over a step its
+# stiffness is (2K/ρ)(2Δt/3) at most, 6 times the Stokes drag 6πμa of a sphere with
+# 10 W and 60 times with the default of 100 W, which Newton resolves only in many
+# iterations (doc/particles.md). The step is quasi-steady: the viscous times of the box
+# and of a sphere are below 3·10⁻⁴.
+#
+# Writes doc/suspension_time_3d.csv (one row per step: U/U0 in the frame of zero volume
+# flux, the spread of the particle velocities, how far the spheres have moved relative
+# to each other, contacts, smallest gap, Newton iterations, seconds) and
+# doc/suspension_time_3d.png, and prints a summary.
+# Usage (regenerate):  bash benchmarks/suspension_time_3d.sh
+# EXE=PATH overrides the executable, WORK=DIR the work directory (a finished run there is
+# reused), NP=N the MPI ranks (1), STEPS the number of steps (120), SEED the placement (1).
+set -euo pipefail
+top="$(cd "$(dirname "$0")/.." && pwd)"
+exe="${EXE:-$top/build/fdparticle}"
+work="${WORK:-$top/benchmarks/work/suspension_time_3d}"
+np="${NP:-1}"
+steps="${STEPS:-120}"
+seed="${SEED:-1}"
+n=25 box=5 cells=10 dt=8000
+source "$top/benchmarks/suspension_scene.sh"
+mkdir -p "$work"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+name="n${n}_s${seed}_dt${dt}"
+# The contact force at contact: ten apparent weights Δρ g (4/3) π a³.
+stiffness=$(/usr/bin/python3 -c "import math; print(repr(10 * 4 / 3 * math.pi * 0.125))")
+collisions="subsection Collisions
+  set Model     = repulsion
+  set Range     = 0.1
+  set Stiffness = $stiffness
+end
+"
+if [ "$(tail -n +2 "$work/$name/statistics.csv" 2>/dev/null | wc -l)" -lt "$steps" ]; then
+  suspension_prm "$n" "$box" "$cells" "$seed" direct "$dt" $(( steps * dt )) BDF2 \
+    "$work/$name" "$collisions" > "$work/$name.prm"
+  /usr/bin/time -f "%M" -o "$work/$name.mem" \
+    mpirun --oversubscribe -np "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1
+fi
+/usr/bin/python3 "$top/benchmarks/suspension_time_3d.py" "$work/$name" "$box" \
+  "$top/doc/suspension_time_3d.csv"
+echo "peak memory: $(( $(cat "$work/$name.mem") / 1024 )) MB"
+gnuplot <<GP
+set terminal pngcairo size 760,520 noenhanced
+set output "$top/doc/suspension_time_3d.png"
+set datafile separator ","
+set multiplot layout 2,1
+set key outside right
+set xlabel "t U0 / d"
+set ylabel "U / U0"
+set yrange [0:0.7]
+phi = $n * 4.0 / 3 * pi * 0.125 / $box ** 3
+csv = "$top/doc/suspension_time_3d.csv"
+set title "25 random spheres settling in a periodic box, phi = 0.105, d/h = 2 (benchmarks/suspension_time_3d.sh)"
+plot csv u 3:4 w l lw 2 t "U/U0, zero volume flux", (1 - phi) ** 4.65 lw 2 dt 2 t "Richardson-Zaki", \
+     1 - 6.55 * phi lw 2 dt 3 t "Batchelor (1972)"
+unset title
+set ylabel "d, U0"
+set yrange [0:*]
+plot csv u 3:7 w l lw 2 t "relative displacement / d", csv u 3:5 w l lw 2 t "sigma of vz / U0", \
+     csv u 3:6 w l lw 2 t "sigma of vx, vy / U0", csv u 3:(\$9 / 0.1 < 1 ? \$9 / 0.1 : 1/0) w p pt 7 ps 0.5 t "min gap / Range (below 1: in contact)"
+unset multiplot
+GP
+echo "wrote doc/suspension_time_3d.csv and doc/suspension_time_3d.png"
