@@ -3,11 +3,13 @@
 the same particles.csv, number by number.
 
 Each scene is drawn from (--seed, scene index): 2D or 3D box, 1-3 balls (non-overlapping,
-clear of the walls, anywhere along a periodic direction), their densities and motion, base mesh,
-Global refinements, Particle refinement levels (--levels, 0-2), Stokes or Navier-Stokes,
-periodic directions, cut-cell rule, time step, scheme and solver options, and a number of
-steps (--steps, --steps-3d). It is written as WORK/scene-K/scene.prm and run on every rank
-count of --ranks (oversubscribed mpirun beyond 1). A scene fails when
+clear of the walls, anywhere along a periodic direction), their densities and motion, base
+mesh, Global refinements, Particle refinement levels (--levels, 0-2), Stokes or
+Navier-Stokes, periodic directions, cut-cell rule, time step, scheme and solver options,
+the contact model between balls (none, repulsion, spring-dashpot with or without friction)
+and lubrication, and a number of steps (--steps, --steps-3d). It is written as
+WORK/scene-K/scene.prm and run on every rank count of --ranks (oversubscribed mpirun
+beyond 1). A scene fails when
 
   - a rank count crashes, hangs (no output for STALL_SECONDS, or --timeout) or stops with
     an error, unless every rank count stops with the same error (then the scene itself is
@@ -100,6 +102,13 @@ KLU_MAX_FINEST_CELLS_3D = 4
 LID_CHANCE = 0.3
 # A prescribed ball moves this many finest cells over the run: it stays clear of the walls.
 PRESCRIBED_TRAVEL_CELLS = 0.25
+# Between balls: no model (an overlap stops every rank count alike), the repulsion, or
+# the spring-dashpot, with Coulomb friction where the angular velocity comes from the
+# torque balance (friction needs it). Lubrication acts on gaps below three cells.
+CONTACT_MODELS = ("none", "repulsion", "spring-dashpot")
+FRICTION_CHANCE = 0.5
+FRICTION_RANGE = (0.1, 0.5)
+LUBRICATION_CHANCE = 0.3
 GAUSS_POINTS = (3, 5, 7)
 # Level-set rules cost 20x the assembly of Gauss rules at order 6 in 3D, 1.5x at order 2.
 LEVEL_SET_ORDERS = {2: (3, 4, 6), 3: (2, 3, 4)}
@@ -254,8 +263,7 @@ def make_scene(seed, index, dim, steps_range, level_range):
                f"periodic {''.join(a for a, p in zip(AXES, periodic) if p) or '-'}, "
                f"{cut_rule}, {solver[len('Amesos_'):]}{', lid' if walls else ''}, "
                f"dt {fmt(dt)} x {steps}")
-    prm = f"""# Parallel-consistency scene {index} of seed {seed}: {summary}
-set Dimension = {dim}
+    body = f"""set Dimension = {dim}
 set Gravity = {vec(gravity)}
 subsection Geometry
   set Lower corner = {vec([0.0] * dim)}
@@ -303,7 +311,19 @@ subsection Output
   set VTU interval = 0
 end
 """
-    return prm, summary
+    # Contacts, drawn last so that the rest of a scene does not depend on them.
+    model = rng.choice(CONTACT_MODELS)
+    body += f"subsection Collisions\n  set Model = {model}\n"
+    if (model == "spring-dashpot" and "closure = torque balance" in body
+            and rng.random() < FRICTION_CHANCE):
+        body += f"  set Friction coefficient = {fmt(rng.uniform(*FRICTION_RANGE))}\n"
+        model += " with friction"
+    body += "end\n"
+    if rng.random() < LUBRICATION_CHANCE:
+        body += "subsection Lubrication\n  set Enabled = true\nend\n"
+        model += ", lubrication"
+    summary += f", contacts {model}"
+    return f"# Parallel-consistency scene {index} of seed {seed}: {summary}\n" + body, summary
 
 
 # ------------------------------------------------------------------------------ prm facts
