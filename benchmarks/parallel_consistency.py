@@ -109,6 +109,11 @@ CONTACT_MODELS = ("none", "repulsion", "spring-dashpot")
 FRICTION_CHANCE = 0.5
 FRICTION_RANGE = (0.1, 0.5)
 LUBRICATION_CHANCE = 0.3
+# With a contact model, this chance that two balls start in contact, at a gap of this many
+# finest cells: above half a cell, so that two prescribed balls (each travels a quarter
+# cell) cannot meet.
+CLOSE_PAIR_CHANCE = 0.6
+CLOSE_PAIR_GAP_CELLS = (0.55, 0.9)
 GAUSS_POINTS = (3, 5, 7)
 # Level-set rules cost 20x the assembly of Gauss rules at order 6 in 3D, 1.5x at order 2.
 LEVEL_SET_ORDERS = {2: (3, 4, 6), 3: (2, 3, 4)}
@@ -188,6 +193,30 @@ def place_particles(rng, dim, extent, periodic, h_coarse, h_fine, count, stack):
     raise RuntimeError("no room for a single ball; widen the box or shrink RADIUS_RANGE")
 
 
+def close_pair(rng, dim, extent, periodic, h_fine, balls):
+    """Move the second ball to a gap of CLOSE_PAIR_GAP_CELLS finest cells from the first
+    (the contact range is one finest cell), in a random direction where it stays clear of
+    the walls and of the other balls; balls is changed in place. Whether it found room."""
+    wall_gap = min(WALL_GAP_CELLS * h_fine, MAX_GAP)
+    pair_gap = max(min(PAIR_GAP_CELLS * h_fine, MAX_GAP), MIN_PAIR_GAP)
+    (c0, r0), (_, r1) = balls[0], balls[1]
+    for _ in range(PLACEMENT_ATTEMPTS):
+        e = [rng.gauss(0, 1) for _ in range(dim)]
+        norm = math.hypot(*e)
+        distance = r0 + r1 + rng.uniform(*CLOSE_PAIR_GAP_CELLS) * h_fine
+        c = [c0[d] + distance * e[d] / norm for d in range(dim)]
+        c = [c[d] % extent[d] if periodic[d] else c[d] for d in range(dim)]
+        if any(not periodic[d] and not r1 + wall_gap <= c[d] <= extent[d] - r1 - wall_gap
+               for d in range(dim)):
+            continue
+        if all(math.hypot(*[(c[d] - b[d]) - (extent[d] * round((c[d] - b[d]) / extent[d])
+                                              if periodic[d] else 0.0) for d in range(dim)])
+               > r1 + rb + pair_gap for b, rb in balls[2:]):
+            balls[1] = (c, r1)
+            return True
+    return False
+
+
 def make_scene(seed, index, dim, steps_range, level_range):
     """A random valid scene as (prm text, one-line summary)."""
     rng = random.Random(f"{seed}:{index}")
@@ -204,6 +233,14 @@ def make_scene(seed, index, dim, steps_range, level_range):
     longest = steps * (max(TIME_STEPS) if levels > 0 else dt)
     balls = place_particles(rng, dim, extent, periodic, h_coarse, h_fine, rng.randint(1, 3),
                             stack=longest <= SHORT_RUN)
+    # Contacts come from a stream of their own, so the rest of a scene does not depend on
+    # them: the model, lubrication, and a pair placed within the contact range.
+    contacts_rng = random.Random(f"{seed}:{index}:contacts")
+    model = contacts_rng.choice(CONTACT_MODELS)
+    lubrication = contacts_rng.random() < LUBRICATION_CHANCE
+    close = (model != "none" and len(balls) > 1
+             and contacts_rng.random() < CLOSE_PAIR_CHANCE
+             and close_pair(contacts_rng, dim, extent, periodic, h_fine, balls))
 
     densities, motions, directions = [], [], []
     drive = 0.0  # largest |rho_P - rho_f| R^2 of a free ball
@@ -311,18 +348,16 @@ subsection Output
   set VTU interval = 0
 end
 """
-    # Contacts, drawn last so that the rest of a scene does not depend on them.
-    model = rng.choice(CONTACT_MODELS)
     body += f"subsection Collisions\n  set Model = {model}\n"
     if (model == "spring-dashpot" and "closure = torque balance" in body
-            and rng.random() < FRICTION_CHANCE):
-        body += f"  set Friction coefficient = {fmt(rng.uniform(*FRICTION_RANGE))}\n"
+            and contacts_rng.random() < FRICTION_CHANCE):
+        body += f"  set Friction coefficient = {fmt(contacts_rng.uniform(*FRICTION_RANGE))}\n"
         model += " with friction"
     body += "end\n"
-    if rng.random() < LUBRICATION_CHANCE:
+    if lubrication:
         body += "subsection Lubrication\n  set Enabled = true\nend\n"
         model += ", lubrication"
-    summary += f", contacts {model}"
+    summary += f", contacts {model}{', a pair in contact' if close else ''}"
     return f"# Parallel-consistency scene {index} of seed {seed}: {summary}\n" + body, summary
 
 
