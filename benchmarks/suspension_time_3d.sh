@@ -20,13 +20,13 @@
 # doc/suspension_time_3d.png, and prints a summary.
 # Usage (regenerate):  bash benchmarks/suspension_time_3d.sh
 # EXE=PATH overrides the executable, WORK=DIR the work directory (a finished run there is
-# reused), NP=N the MPI ranks (1), STEPS the number of steps (120), SEED the placement (1).
+# reused), NP=N the MPI ranks (1), STEPS the number of steps (103), SEED the placement (1).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/suspension_time_3d}"
 np="${NP:-1}"
-steps="${STEPS:-120}"
+steps="${STEPS:-103}"
 seed="${SEED:-1}"
 n=25 box=5 cells=10 dt=8000
 source "$top/benchmarks/suspension_scene.sh"
@@ -55,18 +55,20 @@ set terminal pngcairo size 760,520 noenhanced
 set output "$top/doc/suspension_time_3d.png"
 set datafile separator ","
 set multiplot layout 2,1
-set key outside right
+set lmargin 10; set rmargin 3
+set key inside right top
 set xlabel "t U0 / d"
 set ylabel "U / U0"
-set yrange [0:0.7]
+set yrange [0:1]
 phi = $n * 4.0 / 3 * pi * 0.125 / $box ** 3
 csv = "$top/doc/suspension_time_3d.csv"
-set title "25 random spheres settling in a periodic box, phi = 0.105, d/h = 2 (benchmarks/suspension_time_3d.sh)"
+set title "25 random spheres settling, periodic box, phi = 0.105, d/h = 2 (suspension_time_3d.sh)"
 plot csv u 3:4 w l lw 2 t "U/U0, zero volume flux", (1 - phi) ** 4.65 lw 2 dt 2 t "Richardson-Zaki", \
      1 - 6.55 * phi lw 2 dt 3 t "Batchelor (1972)"
 unset title
 set ylabel "d, U0"
-set yrange [0:*]
+set yrange [0:1.2]
+set key inside left top
 plot csv u 3:7 w l lw 2 t "relative displacement / d", csv u 3:5 w l lw 2 t "sigma of vz / U0", \
      csv u 3:6 w l lw 2 t "sigma of vx, vy / U0", csv u 3:(\$9 / 0.1 < 1 ? \$9 / 0.1 : 1/0) w p pt 7 ps 0.5 t "min gap / Range (below 1: in contact)"
 unset multiplot
