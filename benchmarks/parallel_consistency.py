@@ -163,6 +163,12 @@ def choose_mesh(rng, dim, level_range):
     return extent, subdivisions, global_refinements, levels, h_coarse, h_coarse / 2 ** levels
 
 
+def separation(a, b, extent, periodic, axes):
+    """Distance of the points a and b over the axes, to the nearest periodic image."""
+    return math.hypot(*[(a[d] - b[d]) - (extent[d] * round((a[d] - b[d]) / extent[d])
+                                         if periodic[d] else 0.0) for d in axes])
+
+
 def place_particles(rng, dim, extent, periodic, h_coarse, h_fine, count, stack):
     """Centres and radii, clear of the walls and of each other (to the nearest periodic
     image); in a periodic direction anywhere, a ball may cross the faces. Unless stack,
@@ -171,11 +177,6 @@ def place_particles(rng, dim, extent, periodic, h_coarse, h_fine, count, stack):
     wall_gap = min(WALL_GAP_CELLS * h_fine, MAX_GAP)
     pair_gap = max(min(PAIR_GAP_CELLS * h_fine, MAX_GAP), MIN_PAIR_GAP)
     apart = list(range(dim)) if stack else [d for d in range(dim) if d != 1]
-
-    def separation(a, b):
-        return math.hypot(*[(a[d] - b[d]) - (extent[d] * round((a[d] - b[d]) / extent[d])
-                                             if periodic[d] else 0.0) for d in apart])
-
     for n in range(count, 0, -1):
         for _ in range(PLACEMENT_ATTEMPTS):
             balls = []
@@ -186,7 +187,8 @@ def place_particles(rng, dim, extent, periodic, h_coarse, h_fine, count, stack):
                     break
                 c = [rng.uniform(0.0, e) if p else rng.uniform(margin, e - margin)
                      for e, p in zip(extent, periodic)]
-                if all(separation(c, b[0]) > r + b[1] + pair_gap for b in balls):
+                if all(separation(c, b[0], extent, periodic, apart) > r + b[1] + pair_gap
+                       for b in balls):
                     balls.append((c, r))
             if len(balls) == n:
                 return balls
@@ -209,9 +211,8 @@ def close_pair(rng, dim, extent, periodic, h_fine, balls):
         if any(not periodic[d] and not r1 + wall_gap <= c[d] <= extent[d] - r1 - wall_gap
                for d in range(dim)):
             continue
-        if all(math.hypot(*[(c[d] - b[d]) - (extent[d] * round((c[d] - b[d]) / extent[d])
-                                              if periodic[d] else 0.0) for d in range(dim)])
-               > r1 + rb + pair_gap for b, rb in balls[2:]):
+        if all(separation(c, b, extent, periodic, range(dim)) > r1 + rb + pair_gap
+               for b, rb in balls[2:]):
             balls[1] = (c, r1)
             return True
     return False
