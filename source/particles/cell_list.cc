@@ -19,11 +19,8 @@ namespace fdparticle
   {
     Assert(width > 0, ExcInternalError());
     for (unsigned int d = 0; d < dim; ++d)
-      {
-        periodic[d] = domain.is_periodic(d);
-        n_bins[d] = std::clamp(static_cast<long>(std::floor(length[d] / width)), 1L,
-                               max_bins_per_direction);
-      }
+      n_bins[d] = std::clamp(static_cast<long>(std::floor(length[d] / width)), 1L,
+                             max_bins_per_direction);
   }
 
   template <int dim>
@@ -42,7 +39,7 @@ namespace fdparticle
     for (unsigned int d = 0; d < dim; ++d)
       {
         const long r = row_of(x[d], d);
-        b[d] = periodic[d] ? ((r % n_bins[d]) + n_bins[d]) % n_bins[d] :
+        b[d] = wraps(d) ? ((r % n_bins[d]) + n_bins[d]) % n_bins[d] :
                              std::clamp(r, 0L, n_bins[d] - 1);
       }
     return b;

@@ -51,11 +51,13 @@ namespace fdparticle
     Bin bin_of(const Point<dim> &x) const;
     /// Index of the bin row of coordinate x in direction d, not wrapped or clamped.
     long row_of(const double x, const unsigned int d) const;
+    /// Whether the bins wrap around in direction d.
+    bool wraps(const unsigned int d) const { return period[d] > 0; }
 
     Point<dim>                               lower;
     Tensor<1, dim>                           length;
-    std::array<bool, dim>                    periodic{};
-    Tensor<1, dim>                           period; ///< Domain::period()
+    /// Domain::period(): the box length in a periodic direction, 0 in the others.
+    Tensor<1, dim>                           period;
     std::array<long, dim>                    n_bins{};
     std::map<Bin, std::vector<unsigned int>> members;
   };
@@ -72,7 +74,7 @@ namespace fdparticle
       for (long o = -1; o <= 1; ++o)
         {
           long b = own[d] + o;
-          if (periodic[d])
+          if (wraps(d))
             b = (b + n_bins[d]) % n_bins[d];
           else if (b < 0 || b >= n_bins[d])
             continue;
@@ -109,7 +111,7 @@ namespace fdparticle
     for (unsigned int d = 0; d < dim; ++d)
       {
         const long first = row_of(box_lower[d], d), last = row_of(box_upper[d], d);
-        if (periodic[d])
+        if (wraps(d))
           for (long r = first; r <= last && long(rows[d].size()) < n_bins[d]; ++r)
             rows[d].push_back(((r % n_bins[d]) + n_bins[d]) % n_bins[d]);
         else
