@@ -6,8 +6,10 @@ References, their citations and definitions: doc/references/README.md.
 
 Regenerate (from the top of the repository, after scripts/build.sh):
     /usr/bin/python3 benchmarks/validation/run.py                  # ~25 min on 2 cores
-    /usr/bin/python3 benchmarks/validation/run.py --tencate E2,E4  # + ten Cate (~15 min each)
+    /usr/bin/python3 benchmarks/validation/run.py --tencate E1,E2,E3,E4
+                    # + ten Cate at d/h = 3 and 6 (~10–20 and 40–60 min a case)
 Options: --only array2d,array3d,shear,wall,closure,tencate   --reuse (keep finished runs)
+         --no-new-runs (tables from the finished runs only, e.g. after runs in parallel)
          --work DIR (default benchmarks/work/validation)       --executable PATH
 """
 import argparse
@@ -32,7 +34,8 @@ def read_rows(path):
 
 class Runner:
     def __init__(self, args):
-        self.exe, self.work, self.reuse = args.executable, args.work, args.reuse
+        self.exe, self.work = args.executable, args.work
+        self.reuse, self.no_new_runs = args.reuse or args.no_new_runs, args.no_new_runs
         os.makedirs(self.work, exist_ok=True)
         self.started = time.time()
 
@@ -41,7 +44,11 @@ class Runner:
         (particles rows, statistics rows, dofs of the last step, wall seconds)."""
         out = os.path.join(self.work, name)
         done = os.path.join(out, "statistics.csv")
-        if not (self.reuse and os.path.exists(os.path.join(out, "smoothness.csv"))):
+        finished = os.path.exists(os.path.join(out, "smoothness.csv"))
+        if not finished and self.no_new_runs:
+            print(f"    {name}: not run (--no-new-runs), left out", flush=True)
+            return None
+        if not (self.reuse and finished):
             with open(os.path.join(TOP, "prm", "validation", base)) as f:
                 text = f.read()
             overrides = dict(overrides, **{"Output/Directory": out, "Output/VTU interval": "0"})
@@ -258,41 +265,51 @@ unset multiplot
 
 
 def tencate(r, md, cases, levels):
+    """Each case at each number of particle refinement levels (d/h = 0.75 * 2^levels)."""
     fluids = {"E1": (970, 0.373, 0.03599), "E2": (965, 0.212, 0.05718),
               "E3": (962, 0.113, 0.08727), "E4": (960, 0.058, 0.12224)}
     rows, curves = [], []
     for case in cases:
         rho, mu, umax = fluids[case]
-        res = r.run(f"tencate_{case}_lv{levels}", "tencate.prm", {
-            "Fluid/Density": rho, "Fluid/Viscosity": mu,
-            "Refinement/Particle refinement levels": levels,
-            "Time/End time": 2.5 if case in ("E1", "E2") else 1.6})
-        if not res:
-            continue
-        parts, stats, dofs, wall_s = res
-        peak = max(-p["vy"] for p in parts)
-        h = 0.02 / 2 ** levels
-        rows.append([case, umax, f"{peak:.5f}", f"{pct(peak, umax):+.2f}", f"{0.015 / h:g}",
-                     max(int(s["dofs"]) for s in stats), f"{wall_s / 60:.1f}", len(stats)])
-        curves.append((case, os.path.join(r.work, f"tencate_{case}_lv{levels}", "particles.csv")))
+        for level in levels:
+            name = f"tencate_{case}_lv{level}"
+            res = r.run(name, "tencate.prm", {
+                "Fluid/Density": rho, "Fluid/Viscosity": mu,
+                "Refinement/Particle refinement levels": level,
+                "Time/End time": 2.5 if case in ("E1", "E2") else 1.6})
+            if not res:
+                continue
+            parts, stats, dofs, wall_s = res
+            peak = max(-p["vy"] for p in parts)
+            d_over_h = 0.015 / (0.02 / 2 ** level)
+            rows.append([case, umax, f"{peak:.5f}", f"{pct(peak, umax):+.2f}", f"{d_over_h:g}",
+                         max(int(s["dofs"]) for s in stats), f"{wall_s / 60:.1f}", len(stats)])
+            curves.append((case, d_over_h, os.path.join(r.work, name, "particles.csv")))
     if not rows:
         return
     header = ["case", "u_max (Table II)", "ours", "error %", "d/h", "DoFs (max)", "wall min", "steps"]
     write_csv("tencate", header, rows)
-    plots = []
-    for i, (case, path) in enumerate(curves):
+    plots, finest = [], max(c[1] for c in curves)
+    colours = {case: i + 1 for i, case in enumerate(cases)}
+    for case, d_over_h, path in curves:
+        dash = 1 if d_over_h == finest else 2
+        plots.append(f"'{path}' using 1:(-$7) every ::1 with lines lw 2 dt {dash} lc {colours[case]} "
+                     f"title '{case} d/h = {d_over_h:g}'")
+    for case in cases:
         ref = os.path.join(REFS, "tencate2002", f"{case}_velocity.csv")
-        plots.append(f"'{path}' using 1:7 every ::1 with lines lw 2 lc {i + 1} title '{case} fdparticle'")
-        plots.append(f"'{ref}' using 1:2 with points pt 7 ps 0.6 lc {i + 1} title '{case} experiment'")
+        plots.append(f"'{ref}' using 1:(-$2) with points pt 7 ps 0.6 lc {colours[case]} "
+                     f"title '{case} experiment'")
     gnuplot(f"""set terminal pngcairo size 900,550; set output '{DOC}/validation/tencate.png'
-set datafile separator ','; set grid; set xlabel 't (s)'; set ylabel 'settling velocity (m/s)'
-set title 'ten Cate et al. (2002): settling velocity'; set key right top
+set datafile separator ','; set grid; set xlabel 't (s)'; set ylabel 'settling speed (m/s)'
+set title 'ten Cate et al. (2002): settling speed'; set key right top
 plot {', '.join(plots)}
 """)
     md.append("## 5. ten Cate et al. (2002): a sphere settling in a closed box\n\n"
               "Full 3D box 100×160×100 mm, d = 15 mm, ρ_p = 1120 kg/m³, released 127.5 mm above "
-              "the floor; 5×8×5 base cells of 20 mm + particle-following refinement, level set, "
-              "BDF2, Δt = 0.01 s, Navier–Stokes. `prm/validation/tencate.prm`.\n\n"
+              "the floor; 5×8×5 base cells of 20 mm + 2 or 3 levels of particle-following "
+              "refinement (d/h = 3, 6), level set, BDF2, Δt = 0.01 s, Navier–Stokes, lubrication "
+              "on, the default solvers. `prm/validation/tencate.prm`. Runs two at a time on the "
+              "2 cores; in the plot the dashed lines are the coarser mesh.\n\n"
               + table(header, rows) + "\n\n![](validation/tencate.png)\n")
 
 
@@ -300,11 +317,13 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--only", default="array2d,array3d,shear,wall,closure")
     p.add_argument("--tencate", default="", help="cases, e.g. E2,E4 (long)")
-    p.add_argument("--tencate-levels", type=int, default=2)
+    p.add_argument("--tencate-levels", default="2,3", help="particle refinement levels, d/h = 3, 6")
     p.add_argument("--array3d-levels", default="1,2,3")
     p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "validation"))
     p.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
     p.add_argument("--reuse", action="store_true")
+    p.add_argument("--no-new-runs", action="store_true",
+                   help="write the pages from the finished runs of the work directory only")
     args = p.parse_args()
     r = Runner(args)
     only = args.only.split(",") + (["tencate"] if args.tencate else [])
@@ -323,7 +342,7 @@ def main():
         wall(r, sections[4])
     if "tencate" in only:
         sections[5] = []
-        tencate(r, sections[5], args.tencate.split(","), args.tencate_levels)
+        tencate(r, sections[5], args.tencate.split(","), [int(x) for x in args.tencate_levels.split(",")])
     if "closure" in only:
         sections[6] = []
         closure(r, sections[6])
@@ -339,7 +358,7 @@ def main():
 HEADER = """# Validation against published results
 
 Written by `benchmarks/validation/run.py` (regenerate: `/usr/bin/python3
-benchmarks/validation/run.py`, ~25 min on 2 cores; ten Cate: add `--tencate E2,E4`). Each
+benchmarks/validation/run.py`, ~25 min on 2 cores; ten Cate: add `--tencate E1,E2,E3,E4`). Each
 section below is regenerated separately (`--only NAME`); the discussion at the end is
 doc/validation/discussion.md. References, their definitions and citations:
 doc/references/README.md. Errors are (ours − reference)/reference. d/h is the particle
