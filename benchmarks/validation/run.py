@@ -265,7 +265,7 @@ unset multiplot
 
 
 def tencate(r, md, cases, levels):
-    """Each case at each number of particle refinement levels (d/h = 0.75 * 2^levels)."""
+    """Each case at each number of particle refinement levels."""
     fluids = {"E1": (970, 0.373, 0.03599), "E2": (965, 0.212, 0.05718),
               "E3": (962, 0.113, 0.08727), "E4": (960, 0.058, 0.12224)}
     rows, curves = [], []
@@ -281,7 +281,7 @@ def tencate(r, md, cases, levels):
                 continue
             parts, stats, dofs, wall_s = res
             peak = max(-p["vy"] for p in parts)
-            d_over_h = 0.015 / (0.02 / 2 ** level)
+            d_over_h = 0.75 * 2 ** level  # d = 15 mm on base cells of 20 mm
             rows.append([case, umax, f"{peak:.5f}", f"{pct(peak, umax):+.2f}", f"{d_over_h:g}",
                          max(int(s["dofs"]) for s in stats), f"{wall_s / 60:.1f}", len(stats)])
             curves.append((case, d_over_h, os.path.join(r.work, name, "particles.csv")))
@@ -306,10 +306,12 @@ plot {', '.join(plots)}
 """)
     md.append("## 5. ten Cate et al. (2002): a sphere settling in a closed box\n\n"
               "Full 3D box 100×160×100 mm, d = 15 mm, ρ_p = 1120 kg/m³, released 127.5 mm above "
-              "the floor; 5×8×5 base cells of 20 mm + 2 or 3 levels of particle-following "
-              "refinement (d/h = 3, 6), level set, BDF2, Δt = 0.01 s, Navier–Stokes, lubrication "
-              "on, the default solvers. `prm/validation/tencate.prm`. Runs two at a time on the "
-              "2 cores; in the plot the dashed lines are the coarser mesh.\n\n"
+              f"the floor; 5×8×5 base cells of 20 mm + {' or '.join(map(str, levels))} levels of "
+              "particle-following refinement (d/h = "
+              f"{', '.join(f'{0.75 * 2 ** level:g}' for level in levels)}), level set, BDF2, "
+              "Δt = 0.01 s, Navier–Stokes, lubrication on, the default solvers. "
+              "`prm/validation/tencate.prm`. Runs two at a time on the 2 cores; in the plot the "
+              "dashed lines are the coarser meshes.\n\n"
               + table(header, rows) + "\n\n![](validation/tencate.png)\n")
 
 
