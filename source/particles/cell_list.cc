@@ -40,7 +40,7 @@ namespace fdparticle
       {
         const long r = row_of(x[d], d);
         b[d] = wraps(d) ? ((r % n_bins[d]) + n_bins[d]) % n_bins[d] :
-                             std::clamp(r, 0L, n_bins[d] - 1);
+                          std::clamp(r, 0L, n_bins[d] - 1);
       }
     return b;
   }
