@@ -39,8 +39,7 @@ namespace fdparticle
     for (unsigned int d = 0; d < dim; ++d)
       {
         const long r = row_of(x[d], d);
-        b[d] = wraps(d) ? ((r % n_bins[d]) + n_bins[d]) % n_bins[d] :
-                          std::clamp(r, 0L, n_bins[d] - 1);
+        b[d] = wraps(d) ? wrap_row(r, d) : std::clamp(r, 0L, n_bins[d] - 1);
       }
     return b;
   }

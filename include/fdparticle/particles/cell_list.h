@@ -53,6 +53,15 @@ namespace fdparticle
     long row_of(const double x, const unsigned int d) const;
     /// Whether the bins wrap around in direction d.
     bool wraps(const unsigned int d) const { return period[d] > 0; }
+    /// Row r of direction d brought into [0, n_bins[d]) (a periodic direction).
+    long wrap_row(const long r, const unsigned int d) const
+    {
+      return ((r % n_bins[d]) + n_bins[d]) % n_bins[d];
+    }
+    /// Call f(k) for every point k in the bins whose row in each direction d is one of
+    /// rows[d] (each row listed once).
+    template <typename Function>
+    void visit(const std::array<std::vector<long>, dim> &rows, const Function &f) const;
 
     Point<dim>                               lower;
     Tensor<1, dim>                           length;
@@ -73,31 +82,13 @@ namespace fdparticle
     for (unsigned int d = 0; d < dim; ++d)
       for (long o = -1; o <= 1; ++o)
         {
-          long b = own[d] + o;
-          if (wraps(d))
-            b = (b + n_bins[d]) % n_bins[d];
-          else if (b < 0 || b >= n_bins[d])
+          const long b = wraps(d) ? wrap_row(own[d] + o, d) : own[d] + o;
+          if (b < 0 || b >= n_bins[d])
             continue;
           if (std::find(near[d].begin(), near[d].end(), b) == near[d].end())
             near[d].push_back(b);
         }
-    std::array<std::size_t, dim> choice{};
-    while (true)
-      {
-        Bin b;
-        for (unsigned int d = 0; d < dim; ++d)
-          b[d] = near[d][choice[d]];
-        const auto it = members.find(b);
-        if (it != members.end())
-          for (const unsigned int k : it->second)
-            f(k);
-        // Next combination of neighbour bins, odometer style.
-        unsigned int d = 0;
-        while (d < dim && ++choice[d] == near[d].size())
-          choice[d++] = 0;
-        if (d == dim)
-          break;
-      }
+    visit(near, f);
   }
 
   template <int dim>
@@ -113,7 +104,7 @@ namespace fdparticle
         const long first = row_of(box_lower[d], d), last = row_of(box_upper[d], d);
         if (wraps(d))
           for (long r = first; r <= last && long(rows[d].size()) < n_bins[d]; ++r)
-            rows[d].push_back(((r % n_bins[d]) + n_bins[d]) % n_bins[d]);
+            rows[d].push_back(wrap_row(r, d));
         else
           for (long r = std::max(first, 0L); r <= std::min(last, n_bins[d] - 1); ++r)
             rows[d].push_back(r);
@@ -137,6 +128,14 @@ namespace fdparticle
           }
         return;
       }
+    visit(rows, f);
+  }
+
+  template <int dim>
+  template <typename Function>
+  void CellList<dim>::visit(const std::array<std::vector<long>, dim> &rows,
+                            const Function                           &f) const
+  {
     std::array<std::size_t, dim> choice{};
     while (true)
       {
