@@ -20,14 +20,15 @@ doc/lubrication_pair.png.
 
 --dimension 2 runs the same scene with two cylinders (per unit length; lambda = F/(mu U)).
 No exact solution exists in 2D, so the reference is the resolved force of the same scene
-at --reference-level (default 8, d/h = 128), and the shift s solves resolved = reference -
+at d/h = 512 and 1024 extrapolated to h -> 0 (--reference-dh, as benchmarks/
+lubrication_wall.py), and the shift s solves resolved = reference -
 2 (C(g) - C(g + s)) for the leading term C(g) = 3 sqrt(2) pi (a*/g)^(3/2), a* = a/2, at
 the relative velocity 2U. Writes doc/lubrication_pair_2d.csv and .png.
 
 Regenerate (from the top of the repository, after scripts/build.sh; about 4 min for
---levels 3, 15 min with 4; 2D: 2 min):
+--levels 3, 15 min with 4; 2D: 15 min):
     /usr/bin/python3 benchmarks/lubrication_pair.py [--executable PATH] [--work DIR]
-        [--levels 3] [--dimension 2 [--reference-level 8]]
+        [--levels 3] [--dimension 2 --levels 3 4 5 [--reference-dh 512 1024]]
 """
 import csv
 import math
@@ -39,7 +40,7 @@ TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 WALL = SourceFileLoader("lubrication_wall", os.path.join(TOP, "benchmarks", "lubrication_wall.py")).load_module()
 DOC = os.path.join(TOP, "doc")
-# 2D starts at 0.05a, where the d/h = 128 reference still has three cells in the gap.
+# 2D starts at 0.05a: below it even d/h = 1024 (2.6 cells at 0.02a) has not converged.
 GAPS = {3: (0.03, 0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0), 2: (0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0)}
 CENTRE = 8.0  # the mid-plane of the 16a box
 
@@ -66,9 +67,10 @@ def cylinder_shift(gap, resolved, reference):
     return 0.5 * (2 * 3 * math.sqrt(2) * math.pi / wide) ** (2 / 3) - gap if wide > 0 else float("nan")
 
 
-def run(args, base, levels, gap):
-    """Resolved force and correction, in units of lambda, of the upper ball at the gap."""
-    name = f"pair_{args.dimension}d_lv{levels}_gap{gap}"
+def run(args, base, levels, gap, subdivisions=4):
+    """Resolved force and correction, in units of lambda, of the upper ball at the gap
+    (2D: on subdivisions² base cells)."""
+    name = f"pair_{args.dimension}d_{subdivisions}_lv{levels}_gap{gap}"
     out = os.path.join(args.work, name)
     prm = os.path.join(args.work, name + ".prm")
     offset = 1 + gap / 2
@@ -78,7 +80,8 @@ def run(args, base, levels, gap):
                                     f"0, {CENTRE + offset}, 0 : 1 : 1 : prescribed : 0, -1, 0"}
     if args.dimension == 2:
         scene.update({"Dimension": 2, "Gravity": "0, 0", "Geometry/Lower corner": "-8, 0",
-                      "Geometry/Upper corner": "8, 16", "Geometry/Subdivisions": "4, 4",
+                      "Geometry/Upper corner": "8, 16",
+                      "Geometry/Subdivisions": f"{subdivisions}, {subdivisions}",
                       "Particles/Particles": f"0, {CENTRE - offset} : 1 : 1 : prescribed : 0, 1; "
                                              f"0, {CENTRE + offset} : 1 : 1 : prescribed : 0, -1"})
     with open(prm, "w") as f:
@@ -94,7 +97,9 @@ def run(args, base, levels, gap):
 def main():
     args, base = WALL.arguments(__doc__, "lubrication_pair", [3])
     if args.dimension == 2:
-        references = {gap: run(args, base, args.reference_level, gap)[0] for gap in GAPS[2]}
+        references = WALL.extrapolated_reference(
+            lambda subdivisions, levels, gap: run(args, base, levels, gap, subdivisions)[0],
+            GAPS[2], args.reference_dh)
     rows = []
     for levels in args.levels:
         h = WALL.cell_size(levels)
@@ -107,7 +112,7 @@ def main():
                 ref = references[gap]
                 shift = cylinder_shift(gap, resolved, ref)
             rows.append(WALL.table_row(h, gap, ref, resolved, shift, correction))
-    reference_dh = f"{2 / WALL.cell_size(args.reference_level):g}"
+    reference_dh = "{} and {}, extrapolated".format(*args.reference_dh)
     reference = "Brenner lambda" if args.dimension == 3 else f"reference (d/h = {reference_dh})"
     header = ["d/h", "gap/a", "gap/h", reference, "resolved", "error %", "shift s/a",
               "correction", "error with correction %"]

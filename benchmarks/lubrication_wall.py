@@ -14,15 +14,16 @@ one (the 'auto' Gap shift is fitted to it). The reference is Brenner's exact ser
 doc/lubrication_wall.png.
 
 --dimension 2 runs the same scene with a cylinder (per unit length; kappa = F/(mu U)). No
-exact solution exists in 2D, so the reference is the resolved force of the same scene at
---reference-level (default 8, d/h = 128: at least 3 cells in the thinnest gap, 0.05a), and
+exact solution exists in 2D, so the reference is the resolved force of the same scene on
+two fine meshes, --reference-dh (default d/h = 512 and 1024: 10 and 20 cells in the
+thinnest gap, 0.05a), extrapolated to h -> 0 at first order (extrapolated_reference), and
 the shift s solves resolved = reference - (C(delta) - C(delta + s)) for the leading term
 C(g) = 3 sqrt(2) pi (a/g)^(3/2). Writes doc/lubrication_wall_2d.csv and .png.
 
 Regenerate (from the top of the repository, after scripts/build.sh; about 12 min for 3D
-levels 3 4, 45 min with 5, 1 min for 2D):
+levels 3 4, 45 min with 5, 10 min for 2D):
     /usr/bin/python3 benchmarks/lubrication_wall.py [--executable PATH] [--work DIR]
-        [--levels 3 4] [--dimension 2 [--reference-level 8]]
+        [--levels 3 4] [--dimension 2 [--reference-dh 512 1024]]
 """
 import argparse
 import csv
@@ -40,6 +41,34 @@ GAPS = {3: (0.03, 0.05, 0.1, 0.15, 0.25, 0.4, 0.6, 1.0), 2: (0.05, 0.1, 0.15, 0.
 def cell_size(levels):
     """The finest cell edge: wall.prm's base cells of 4a halved per refinement level."""
     return 16 / 4 / 2 ** levels
+
+
+def reference_mesh(d_over_h):
+    """(base subdivisions per direction, particle refinement levels) of the 16a box for
+    d/h = 2a/h, a power of two: wall.prm's 4 base cells, and more where the levels would
+    pass 8, the most Refinement/Particle refinement levels accepts."""
+    subdivisions, levels = 4, round(math.log2(2 * d_over_h))
+    assert 2 ** levels == 2 * d_over_h, "d/h of a reference must be a power of two"
+    while levels > 8:
+        subdivisions, levels = 2 * subdivisions, levels - 1
+    return subdivisions, levels
+
+
+def extrapolated_reference(run_force, gaps, d_over_h):
+    """2D reference {gap: force}: the resolved force on the meshes d_over_h = (coarse,
+    fine), fine = 2 coarse, extrapolated to h -> 0 at first order, fine + (fine - coarse).
+    The resolved force of a thin gap converges slowly: from d/h = 128 to 1024 it grows by
+    24-32 % at 0.05a, and at 0.1-0.15a its increments halve from 512 to 1024 (doc/
+    particles.md, Lubrication). run_force(subdivisions, levels, gap) -> resolved force."""
+    coarse, fine = d_over_h
+    assert fine == 2 * coarse, "the reference meshes must be d/h and 2 d/h"
+    references = {}
+    for gap in gaps:
+        f_coarse, f_fine = (run_force(*reference_mesh(dh), gap) for dh in (coarse, fine))
+        references[gap] = 2 * f_fine - f_coarse
+        print(f"reference at gap {gap}: {f_coarse:.4f} (d/h = {coarse}), {f_fine:.4f} "
+              f"(d/h = {fine}), extrapolated {references[gap]:.4f}", flush=True)
+    return references
 
 
 def brenner(delta):
@@ -65,10 +94,10 @@ def effective_gap(kappa, law=brenner):
     return math.sqrt(low * high)
 
 
-def run(args, base, levels, delta):
+def run(args, base, levels, delta, subdivisions=4):
     """Resolved force and correction, in units of kappa, of the sphere (cylinder) at gap
-    delta with the given particle refinement levels."""
-    name = f"{args.dimension}d_lv{levels}_gap{delta}"
+    delta with the given particle refinement levels (2D: on subdivisions² base cells)."""
+    name = f"{args.dimension}d_{subdivisions}_lv{levels}_gap{delta}"
     out = os.path.join(args.work, name)
     prm = os.path.join(args.work, name + ".prm")
     # The density keeps alpha = rho/dt at the prm's 1e-4 << mu/a^2: the flow reaches the
@@ -79,7 +108,8 @@ def run(args, base, levels, delta):
         scene["Particles/Particles"] = f"0, {1 + delta}, 0 : 1 : 1 : prescribed : 0, -1, 0"
     else:
         scene.update({"Dimension": 2, "Gravity": "0, 0", "Geometry/Lower corner": "-8, 0",
-                      "Geometry/Upper corner": "8, 16", "Geometry/Subdivisions": "4, 4",
+                      "Geometry/Upper corner": "8, 16",
+                      "Geometry/Subdivisions": f"{subdivisions}, {subdivisions}",
                       "Particles/Particles": f"0, {1 + delta} : 1 : 1 : prescribed : 0, -1"})
     with open(prm, "w") as f:
         f.write(STUDY.apply_overrides(base, scene) + "subsection Lubrication\n  set Enabled = true\nend\n")
@@ -108,7 +138,8 @@ def arguments(description, name, levels):
     p.add_argument("--levels", type=int, nargs="+", default=levels,
                    help="particle refinement levels (d/h = 2^(levels - 1))")
     p.add_argument("--dimension", type=int, choices=(2, 3), default=3)
-    p.add_argument("--reference-level", type=int, default=8, help="2D: level of the reference")
+    p.add_argument("--reference-dh", type=int, nargs=2, default=[512, 1024],
+                   help="2D: the two meshes (d/h) of the extrapolated reference")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     with open(os.path.join(TOP, "prm", "validation", "wall.prm")) as f:
@@ -118,7 +149,9 @@ def arguments(description, name, levels):
 def main():
     args, base = arguments(__doc__, "lubrication_wall", [3, 4])
     if args.dimension == 2:
-        references = {delta: run(args, base, args.reference_level, delta)[0] for delta in GAPS[2]}
+        references = extrapolated_reference(
+            lambda subdivisions, levels, delta: run(args, base, levels, delta, subdivisions)[0],
+            GAPS[2], args.reference_dh)
     rows = []
     for levels in args.levels:
         h = cell_size(levels)
@@ -130,7 +163,7 @@ def main():
                 ref = references[delta]
                 shift = cylinder_shift(delta, resolved, ref)
             rows.append(table_row(h, delta, ref, resolved, shift, correction))
-    reference_dh = f"{2 / cell_size(args.reference_level):g}"
+    reference_dh = "{} and {}, extrapolated".format(*args.reference_dh)
     reference = "Brenner kappa" if args.dimension == 3 else f"reference (d/h = {reference_dh})"
     header = ["d/h", "delta/a", "gap/h", reference, "resolved", "error %", "shift s/a",
               "correction", "error with correction %"]

@@ -20,11 +20,11 @@ namespace fdparticle
                         "s_0, the shift s of a gap below a cell (a length; s tapers from s_0 "
                         "at contact to 0 at Resolved gap), or 'auto', fitted to the resolved "
                         "force (doc/particles.md, Lubrication): at a wall c a* for the reduced "
-                        "radius a*, c = 0.033 in 3D and 0.018 in 2D (a ball approaching a wall "
-                        "at d/h = 4, 8, 16); between two balls, whose sub-cell gap the "
-                        "resolved flow misses by far more, 0.97 h in 3D (h the finest cell "
-                        "edge; two spheres approaching each other at d/h = 4, 8) and 0.145 a* "
-                        "in 2D (two cylinders at d/h = 4, 8, 16).");
+                        "radius a*, c = 0.033 (a ball approaching a wall at d/h = 4, 8, 16, in 2D "
+                        "and 3D); between two balls, whose sub-cell gap the resolved flow "
+                        "misses by far more, 0.97 h in 3D and 0.85 h in 2D (h the finest cell "
+                        "edge; two spheres approaching each other at d/h = 4, 8, two cylinders "
+                        "at d/h = 4, 8, 16).");
       prm.declare_entry("Resolved gap", "auto", Patterns::Anything(),
                         "Gap below which the correction acts (a length), or 'auto': three "
                         "finest cell edges, from where the resolved squeeze force has "
@@ -73,9 +73,7 @@ namespace fdparticle
   {
     if (shift_entry)
       return *shift_entry;
-    if (!pair)
-      return shift_fraction * reduced_radius;
-    return dim == 3 ? pair_shift_cells * finest_cell : pair_shift_fraction * reduced_radius;
+    return pair ? pair_shift_cells * finest_cell : shift_fraction * reduced_radius;
   }
 
   template <int dim>

@@ -4,9 +4,9 @@ The expected force is computed here from the centres in particles.csv (the end-o
 positions, where the code evaluates it): for cylinders the leading lubrication term per
 unit length is 3 sqrt(2) pi mu U (a*/g)^(3/2) (a cylinder of radius a* at gap g from a
 plane; a* = a1 a2 / (a1 + a2) for two cylinders). The resolved flow carries that term at a
-gap widened by s = s_0 (1 - g/g_r), s_0 = 0.018 a* at a wall and 0.145 a* between two
-cylinders (the 'auto' Gap shift, doc/particles.md), so the correction is C(g) - C(g + s)
-below the resolved gap g_r = 3h (h the finest cell edge), zero above."""
+gap widened by s = s_0 (1 - g/g_r), s_0 = 0.033 a* at a wall and 0.85 h between two
+cylinders (the 'auto' Gap shift, doc/particles.md; h the finest cell edge), so the
+correction is C(g) - C(g + s) below the resolved gap g_r = 3h, zero above."""
 import math
 import sys
 from testlib import table, parameters, check, finish
@@ -21,7 +21,7 @@ g_r = 3 * h
 
 def correction(a_star, g, pair):
     C = lambda x: 3 * math.sqrt(2) * math.pi * mu * (a_star / x) ** 1.5
-    s = (0.145 if pair else 0.018) * a_star * (1 - g / g_r)
+    s = (0.85 * h if pair else 0.033 * a_star) * (1 - g / g_r)
     return (C(g) - C(g + s)) * U if g < g_r else 0.0
 
 

@@ -64,26 +64,26 @@ namespace fdparticle
      * The 'auto' shift s_0 = shift_fraction a*, fitted to the resolved force on a ball
      * approaching a wall (benchmarks/lubrication_wall.py, doc/particles.md). Below a cell
      * the measured shift hardly depends on the gap or on the mesh (3D: 0.02–0.04a at
-     * d/h = 4, 8 and 16; 2D: 0.01–0.03a), so one fraction of the radius serves every
-     * mesh. 3D: a sphere against Brenner's exact series, within 6 % at gaps 0.03a … a;
-     * 2D: a cylinder against the resolved force at d/h = 128, within 12 % (the
-     * sub-cell force scatters with where the gap sits in its cell).
+     * d/h = 4, 8 and 16; 2D: 0.01–0.04a), so one fraction of the radius serves every
+     * mesh, and the same in 2D and 3D. 3D: a sphere against Brenner's exact series,
+     * within 6 % at gaps 0.03a … a; 2D: a cylinder against the resolved force
+     * extrapolated from d/h = 512 and 1024, within 11.2 % (the sub-cell force scatters
+     * with where the gap sits in its cell).
      */
-    static constexpr double shift_fraction = (dim == 3 ? 0.033 : 0.018);
+    static constexpr double shift_fraction = 0.033;
     /**
-     * The 'auto' shift between two balls, fitted to two equal balls approaching each
-     * other (benchmarks/lubrication_pair.py, doc/particles.md): their resolved force
-     * below a cell is far lower than at a wall, because one Q2 velocity has to turn from
-     * +U to −U across the gap. In 3D the shift is about one finest cell edge h at every
-     * gap below a cell and on both meshes (0.29–0.30a at d/h = 4, 0.15–0.17a at 8), so
-     * s_0 = pair_shift_cells h, the value that minimises the largest error against
-     * Brenner's exact series (2.9 % over gaps 0.03a … a at d/h = 4 and 8; a fraction of
-     * a* fits to 5.6 %). In 2D the shift scatters with the gap as at the wall and hardly
-     * follows h; s_0 = pair_shift_fraction a* minimises the largest error against the
-     * resolved force at d/h = 128 (23 % over d/h = 4, 8, 16; a multiple of h: 29 %).
+     * The 'auto' shift between two balls, s_0 = pair_shift_cells h (h the finest cell
+     * edge), fitted to two equal balls approaching each other (benchmarks/
+     * lubrication_pair.py, doc/particles.md): their resolved force below a cell is far
+     * lower than at a wall, because one Q2 velocity has to turn from +U to −U across the
+     * gap, and the shift is about a cell at every gap below a cell. 3D: 0.29–0.30a at
+     * d/h = 4, 0.15–0.17a at 8; 0.97 minimises the largest error against Brenner's exact
+     * series (2.9 % over gaps 0.03a … a at d/h = 4 and 8; a fraction of a* fits to 5.6 %).
+     * 2D: 0.21–0.23a at d/h = 4, 0.14a at 8, 0.10–0.12a at 16; 0.85 minimises the largest
+     * error against the resolved force extrapolated from d/h = 512 and 1024 (9.4 % over
+     * gaps 0.05a … a at d/h = 4, 8, 16; a fraction of a*: 12.4 %).
      */
-    static constexpr double pair_shift_cells    = 0.97;
-    static constexpr double pair_shift_fraction = 0.145;
+    static constexpr double pair_shift_cells = (dim == 3 ? 0.97 : 0.85);
     /// The resolved gap of 'auto', in finest cell edges: from three cells up the resolved
     /// drag has converged (within 1–3 % of Brenner's, with or without the correction).
     static constexpr double resolved_gap_cells = 3.0;
