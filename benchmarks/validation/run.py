@@ -8,6 +8,7 @@ Regenerate (from the top of the repository, after scripts/build.sh):
     /usr/bin/python3 benchmarks/validation/run.py                  # ~25 min on 2 cores
     /usr/bin/python3 benchmarks/validation/run.py --tencate E1,E2,E3,E4
                     # + ten Cate at d/h = 3 and 6 (~10–20 and 40–60 min a case)
+        --tencate-meshes 5x8x5/2,5x8x5/3,7x11x7/3   # + d/h = 8.25 (~1.5–2.5 h a case)
 Options: --only array2d,array3d,shear,wall,closure,tencate   --reuse (keep finished runs)
          --no-new-runs (tables from the finished runs only, e.g. after runs in parallel)
          --work DIR (default benchmarks/work/validation)       --executable PATH
@@ -264,35 +265,50 @@ unset multiplot
                   f"{w[0]:.3e}, kinematic {w[1]:.3e}.\n\n![](validation/closure.png)\n")
 
 
-def tencate(r, md, cases, levels):
-    """Each case at each number of particle refinement levels."""
+TENCATE_BOX_MM = (100, 160, 100)  # prm/validation/tencate.prm
+TENCATE_D_MM = 15
+
+
+def tencate_mesh(mesh):
+    """'5x8x5/3' -> (subdivisions, levels, d/h), h the largest edge of the finest cells."""
+    base, levels = mesh.split("/")
+    subdivisions = [int(n) for n in base.split("x")]
+    h = max(length / n for length, n in zip(TENCATE_BOX_MM, subdivisions)) / 2 ** int(levels)
+    return subdivisions, int(levels), TENCATE_D_MM / h
+
+
+def tencate(r, md, cases, meshes):
+    """Each case on each mesh (base subdivisions / particle refinement levels)."""
     fluids = {"E1": (970, 0.373, 0.03599), "E2": (965, 0.212, 0.05718),
               "E3": (962, 0.113, 0.08727), "E4": (960, 0.058, 0.12224)}
     rows, curves = [], []
     for case in cases:
         rho, mu, umax = fluids[case]
-        for level in levels:
-            name = f"tencate_{case}_lv{level}"
+        for mesh in meshes:
+            subdivisions, level, d_over_h = tencate_mesh(mesh)
+            name = f"tencate_{case}_{mesh.replace('/', '_lv')}"
             res = r.run(name, "tencate.prm", {
                 "Fluid/Density": rho, "Fluid/Viscosity": mu,
+                "Geometry/Subdivisions": ", ".join(map(str, subdivisions)),
                 "Refinement/Particle refinement levels": level,
                 "Time/End time": 2.5 if case in ("E1", "E2") else 1.6})
             if not res:
                 continue
             parts, stats, dofs, wall_s = res
             peak = max(-p["vy"] for p in parts)
-            d_over_h = 0.75 * 2 ** level  # d = 15 mm on base cells of 20 mm
-            rows.append([case, umax, f"{peak:.5f}", f"{pct(peak, umax):+.2f}", f"{d_over_h:g}",
-                         max(int(s["dofs"]) for s in stats), f"{wall_s / 60:.1f}", len(stats)])
+            rows.append([case, umax, f"{peak:.5f}", f"{pct(peak, umax):+.2f}", f"{d_over_h:.3g}",
+                         mesh.split("/")[0], max(int(s["dofs"]) for s in stats),
+                         f"{wall_s / 60:.1f}", len(stats)])
             curves.append((case, d_over_h, os.path.join(r.work, name, "particles.csv")))
     if not rows:
         return
-    header = ["case", "u_max (Table II)", "ours", "error %", "d/h", "DoFs (max)", "wall min", "steps"]
+    header = ["case", "u_max (Table II)", "ours", "error %", "d/h", "base cells", "DoFs (max)",
+              "wall min", "steps"]
     write_csv("tencate", header, rows)
-    plots, finest = [], max(c[1] for c in curves)
+    plots = []
     colours = {case: i + 1 for i, case in enumerate(cases)}
     for case, d_over_h, path in curves:
-        dash = 1 if d_over_h == finest else 2
+        dash = 1 + sum(c[1] > d_over_h for c in curves if c[0] == case)  # finest solid
         plots.append(f"'{path}' using 1:(-$7) every ::1 with lines lw 2 dt {dash} lc {colours[case]} "
                      f"title '{case} d/h = {d_over_h:g}'")
     for case in cases:
@@ -306,12 +322,14 @@ plot {', '.join(plots)}
 """)
     md.append("## 5. ten Cate et al. (2002): a sphere settling in a closed box\n\n"
               "Full 3D box 100×160×100 mm, d = 15 mm, ρ_p = 1120 kg/m³, released 127.5 mm above "
-              f"the floor; 5×8×5 base cells of 20 mm + {' or '.join(map(str, levels))} levels of "
-              "particle-following refinement (d/h = "
-              f"{', '.join(f'{0.75 * 2 ** level:g}' for level in levels)}), level set, BDF2, "
+              "the floor; base cells (subdivisions of the box) + levels of particle-following "
+              "refinement: "
+              + ", ".join(f"{m.split('/')[0].replace('x', '×')} + {tencate_mesh(m)[1]} "
+                          f"(d/h = {tencate_mesh(m)[2]:.3g})" for m in meshes)
+              + "; d/h by the longest edge of the finest cells; level set, BDF2, "
               "Δt = 0.01 s, Navier–Stokes, lubrication on, the default solvers. "
-              "`prm/validation/tencate.prm`. Runs two at a time on the 2 cores; in the plot the "
-              "dashed lines are the coarser meshes.\n\n"
+              "`prm/validation/tencate.prm`. In the plot a case's finest mesh is the solid "
+              "line, the next coarser dashed, the next dotted.\n\n"
               + table(header, rows) + "\n\n![](validation/tencate.png)\n")
 
 
@@ -319,7 +337,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--only", default="array2d,array3d,shear,wall,closure")
     p.add_argument("--tencate", default="", help="cases, e.g. E2,E4 (long)")
-    p.add_argument("--tencate-levels", default="2,3", help="particle refinement levels, d/h = 3, 6")
+    p.add_argument("--tencate-meshes", default="5x8x5/2,5x8x5/3",
+                   help="base subdivisions/particle refinement levels; the default: d/h = 3, 6")
     p.add_argument("--array3d-levels", default="1,2,3")
     p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "validation"))
     p.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
@@ -344,7 +363,7 @@ def main():
         wall(r, sections[4])
     if "tencate" in only:
         sections[5] = []
-        tencate(r, sections[5], args.tencate.split(","), [int(x) for x in args.tencate_levels.split(",")])
+        tencate(r, sections[5], args.tencate.split(","), args.tencate_meshes.split(","))
     if "closure" in only:
         sections[6] = []
         closure(r, sections[6])
