@@ -15,7 +15,7 @@ doc/lubrication_wall.png.
 
 --dimension 2 runs the same scene with a cylinder (per unit length; kappa = F/(mu U)). No
 exact solution exists in 2D, so the reference is the resolved force of the same scene on
-two fine meshes, --reference-dh (default d/h = 512 and 1024: 10 and 20 cells in the
+two fine meshes, --reference-dh (default d/h = 512 and 1024: 13 and 26 cells in the
 thinnest gap, 0.05a), extrapolated to h -> 0 at first order (extrapolated_reference), and
 the shift s solves resolved = reference - (C(delta) - C(delta + s)) for the leading term
 C(g) = 3 sqrt(2) pi (a/g)^(3/2). Writes doc/lubrication_wall_2d.csv and .png.
@@ -58,8 +58,8 @@ def extrapolated_reference(run_force, gaps, d_over_h):
     """2D reference {gap: force}: the resolved force on the meshes d_over_h = (coarse,
     fine), fine = 2 coarse, extrapolated to h -> 0 at first order, fine + (fine - coarse).
     The resolved force of a thin gap converges slowly: from d/h = 128 to 1024 it grows by
-    24-32 % at 0.05a, and at 0.1-0.15a its increments halve from 512 to 1024 (doc/
-    particles.md, Lubrication). run_force(subdivisions, levels, gap) -> resolved force."""
+    24-32 % at 0.05a, and from 512 to 1024 its increments are 0.5-0.7 of those from 256
+    to 512 (doc/particles.md, Lubrication). run_force(subdivisions, levels, gap) -> resolved force."""
     coarse, fine = d_over_h
     assert fine == 2 * coarse, "the reference meshes must be d/h and 2 d/h"
     references = {}
