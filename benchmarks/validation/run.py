@@ -270,11 +270,12 @@ TENCATE_D_MM = 15
 
 
 def tencate_mesh(mesh):
-    """'5x8x5/3' -> (subdivisions, levels, d/h), h the largest edge of the finest cells."""
+    """'5x8x5/3' -> (base '5x8x5', subdivisions, levels, d/h), h the largest edge of the
+    finest cells."""
     base, levels = mesh.split("/")
     subdivisions = [int(n) for n in base.split("x")]
     h = max(length / n for length, n in zip(TENCATE_BOX_MM, subdivisions)) / 2 ** int(levels)
-    return subdivisions, int(levels), TENCATE_D_MM / h
+    return base, subdivisions, int(levels), TENCATE_D_MM / h
 
 
 def tencate(r, md, cases, meshes):
@@ -285,7 +286,7 @@ def tencate(r, md, cases, meshes):
     for case in cases:
         rho, mu, umax = fluids[case]
         for mesh in meshes:
-            subdivisions, level, d_over_h = tencate_mesh(mesh)
+            base, subdivisions, level, d_over_h = tencate_mesh(mesh)
             name = f"tencate_{case}_{mesh.replace('/', '_lv')}"
             res = r.run(name, "tencate.prm", {
                 "Fluid/Density": rho, "Fluid/Viscosity": mu,
@@ -297,7 +298,7 @@ def tencate(r, md, cases, meshes):
             parts, stats, dofs, wall_s = res
             peak = max(-p["vy"] for p in parts)
             rows.append([case, umax, f"{peak:.5f}", f"{pct(peak, umax):+.2f}", f"{d_over_h:.3g}",
-                         mesh.split("/")[0], max(int(s["dofs"]) for s in stats),
+                         base, max(int(s["dofs"]) for s in stats),
                          f"{wall_s / 60:.1f}", len(stats)])
             curves.append((case, d_over_h, os.path.join(r.work, name, "particles.csv")))
     if not rows:
@@ -324,8 +325,8 @@ plot {', '.join(plots)}
               "Full 3D box 100×160×100 mm, d = 15 mm, ρ_p = 1120 kg/m³, released 127.5 mm above "
               "the floor; base cells (subdivisions of the box) + levels of particle-following "
               "refinement: "
-              + ", ".join(f"{m.split('/')[0].replace('x', '×')} + {tencate_mesh(m)[1]} "
-                          f"(d/h = {tencate_mesh(m)[2]:.3g})" for m in meshes)
+              + ", ".join(f"{base.replace('x', '×')} + {level} (d/h = {d_over_h:.3g})"
+                          for base, _, level, d_over_h in map(tencate_mesh, meshes))
               + "; d/h by the longest edge of the finest cells; level set, BDF2, "
               "Δt = 0.01 s, Navier–Stokes, lubrication on, the default solvers. "
               "`prm/validation/tencate.prm`. In the plot a case's finest mesh is the solid "
