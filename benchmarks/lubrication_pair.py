@@ -30,14 +30,11 @@ Regenerate (from the top of the repository, after scripts/build.sh; about 4 min 
     /usr/bin/python3 benchmarks/lubrication_pair.py [--executable PATH] [--work DIR]
         [--levels 3] [--dimension 2 --levels 3 4 5 [--reference-dh 512 1024]]
 """
-import csv
 import math
 import os
-import subprocess
 from importlib.machinery import SourceFileLoader
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 WALL = SourceFileLoader("lubrication_wall", os.path.join(TOP, "benchmarks", "lubrication_wall.py")).load_module()
 DOC = os.path.join(TOP, "doc")
 # 2D starts at 0.05a: below it even d/h = 1024 (2.6 cells at 0.02a) has not converged.
@@ -69,29 +66,10 @@ def cylinder_shift(gap, resolved, reference):
 
 def run(args, base, levels, gap, subdivisions=4):
     """Resolved force and correction, in units of lambda, of the upper ball at the gap
-    (2D: on subdivisions² base cells)."""
-    name = f"pair_{args.dimension}d_{subdivisions}_lv{levels}_gap{gap}"
-    out = os.path.join(args.work, name)
-    prm = os.path.join(args.work, name + ".prm")
+    (2D: on subdivisions^2 base cells)."""
     offset = 1 + gap / 2
-    scene = {"Refinement/Particle refinement levels": levels, "Fluid/Density": 1e-9,
-             "Time/Time step": 1e-5, "Time/End time": 1e-5, "Output/Directory": out,
-             "Particles/Particles": f"0, {CENTRE - offset}, 0 : 1 : 1 : prescribed : 0, 1, 0; "
-                                    f"0, {CENTRE + offset}, 0 : 1 : 1 : prescribed : 0, -1, 0"}
-    if args.dimension == 2:
-        scene.update({"Dimension": 2, "Gravity": "0, 0", "Geometry/Lower corner": "-8, 0",
-                      "Geometry/Upper corner": "8, 16",
-                      "Geometry/Subdivisions": f"{subdivisions}, {subdivisions}",
-                      "Particles/Particles": f"0, {CENTRE - offset} : 1 : 1 : prescribed : 0, 1; "
-                                             f"0, {CENTRE + offset} : 1 : 1 : prescribed : 0, -1"})
-    with open(prm, "w") as f:
-        f.write(STUDY.apply_overrides(base, scene) + "subsection Lubrication\n  set Enabled = true\nend\n")
-    with open(os.path.join(args.work, name + ".log"), "w") as log:
-        subprocess.run([args.executable, prm], stdout=log, stderr=subprocess.STDOUT, check=True)
-    with open(os.path.join(out, "particles.csv")) as f:
-        upper = [r for r in csv.DictReader(f) if r["id"] == "1"][-1]
-    scale = 6 * math.pi if args.dimension == 3 else 1.0
-    return float(upper["fy"]) / scale, float(upper["contact_fy"]) / scale
+    return WALL.run_scene(args, base, f"pair_{args.dimension}d_{subdivisions}_lv{levels}_gap{gap}",
+                          levels, [(CENTRE - offset, 1), (CENTRE + offset, -1)], subdivisions)
 
 
 def main():

@@ -94,31 +94,39 @@ def effective_gap(kappa, law=brenner):
     return math.sqrt(low * high)
 
 
-def run(args, base, levels, delta, subdivisions=4):
-    """Resolved force and correction, in units of kappa, of the sphere (cylinder) at gap
-    delta with the given particle refinement levels (2D: on subdivisions² base cells)."""
-    name = f"{args.dimension}d_{subdivisions}_lv{levels}_gap{delta}"
+def run_scene(args, base, name, levels, balls, subdivisions=4):
+    """Resolved force and correction, per (6 pi) in 3D, on the last of the prescribed
+    balls (a = 1, moving along y) given as (centre y, velocity y), with lubrication on:
+    3D in wall.prm's box, 2D in (-8, 0)-(8, 16) on subdivisions^2 base cells. The wall
+    benchmark and benchmarks/lubrication_pair.py run their scenes through it."""
     out = os.path.join(args.work, name)
     prm = os.path.join(args.work, name + ".prm")
+    zero = ", 0" if args.dimension == 3 else ""
     # The density keeps alpha = rho/dt at the prm's 1e-4 << mu/a^2: the flow reaches the
     # walls of the box within the step, as a steady one does.
     scene = {"Refinement/Particle refinement levels": levels, "Fluid/Density": 1e-9,
-             "Time/Time step": 1e-5, "Time/End time": 1e-5, "Output/Directory": out}
-    if args.dimension == 3:
-        scene["Particles/Particles"] = f"0, {1 + delta}, 0 : 1 : 1 : prescribed : 0, -1, 0"
-    else:
+             "Time/Time step": 1e-5, "Time/End time": 1e-5, "Output/Directory": out,
+             "Particles/Particles": "; ".join(f"0, {y}{zero} : 1 : 1 : prescribed : 0, {v}{zero}"
+                                              for y, v in balls)}
+    if args.dimension == 2:
         scene.update({"Dimension": 2, "Gravity": "0, 0", "Geometry/Lower corner": "-8, 0",
                       "Geometry/Upper corner": "8, 16",
-                      "Geometry/Subdivisions": f"{subdivisions}, {subdivisions}",
-                      "Particles/Particles": f"0, {1 + delta} : 1 : 1 : prescribed : 0, -1"})
+                      "Geometry/Subdivisions": f"{subdivisions}, {subdivisions}"})
     with open(prm, "w") as f:
         f.write(STUDY.apply_overrides(base, scene) + "subsection Lubrication\n  set Enabled = true\nend\n")
     with open(os.path.join(args.work, name + ".log"), "w") as log:
         subprocess.run([args.executable, prm], stdout=log, stderr=subprocess.STDOUT, check=True)
     with open(os.path.join(out, "particles.csv")) as f:
-        last = list(csv.DictReader(f))[-1]
+        last = [r for r in csv.DictReader(f) if r["id"] == str(len(balls) - 1)][-1]
     scale = 6 * math.pi if args.dimension == 3 else 1.0
-    return abs(float(last["fy"])) / scale, abs(float(last["contact_fy"])) / scale
+    return float(last["fy"]) / scale, float(last["contact_fy"]) / scale
+
+
+def run(args, base, levels, delta, subdivisions=4):
+    """Resolved force and correction, in units of kappa, of the sphere (cylinder) at gap
+    delta with the given particle refinement levels (2D: on subdivisions^2 base cells)."""
+    return run_scene(args, base, f"{args.dimension}d_{subdivisions}_lv{levels}_gap{delta}",
+                     levels, [(1 + delta, -1)], subdivisions)
 
 
 def cylinder_shift(delta, resolved, reference):
