@@ -20,48 +20,21 @@ top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/cut_cell_weights_2d}"
 ranks="${RANKS:-2}"
+source "$top/benchmarks/settling_disks_scene.sh"
 mkdir -p "$work"
 export OMPI_MCA_mpi_yield_when_idle=1
 csv="$top/doc/cut_cell_weights_2d.csv"
 echo "scene,cut_cell_cost,ranks,min_cells,max_cells,seconds_per_step,assembly_seconds_per_step,repartitions" > "$csv"
 
 settling() { # cost
+  settling_disks_prm 64 32 0.6
   cat <<PRM
-set Dimension = 2
-set Gravity = 0, -981
-subsection Geometry
-  set Lower corner = 0, 0
-  set Upper corner = 2, 2
-  set Subdivisions = 32, 32
-end
-subsection Fluid
-  set Density = 1
-  set Viscosity = 0.1
-end
-subsection Particles
-  subsection Random particles
-    set Count = 64
-    set Radius = 0.04
-    set Density = 1.1
-    set Minimum gap = 0.02
-    set Seed = 1
-    set Lower corner = 0, 0
-    set Upper corner = 2, 0.6
-  end
-end
 subsection Quadrature
   set Cut cells = level set
   set Cut cell cost = $1
 end
 subsection Refinement
   set Particle refinement levels = 1
-end
-subsection Collisions
-  set Model = repulsion
-end
-subsection Time
-  set End time = 0.02
-  set Time step = 0.005
 end
 PRM
 }

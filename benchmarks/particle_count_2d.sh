@@ -12,43 +12,14 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/particle_count_2d}"
+source "$top/benchmarks/settling_disks_scene.sh"
 mkdir -p "$work"
 csv="$top/doc/particle_count_2d.csv"
 echo "particles,particle_unknowns,dofs,steps,newton_iterations_per_step,seconds_per_step,assembly_seconds_per_step,solve_seconds_per_step,peak_MB" > "$csv"
 for n in ${COUNTS:-1 4 16 64 128}; do
-  cat > "$work/n$n.prm" <<PRM
-set Dimension = 2
-set Gravity = 0, -981
-subsection Geometry
-  set Lower corner = 0, 0
-  set Upper corner = 2, 2
-  set Subdivisions = 64, 64
-end
-subsection Fluid
-  set Density = 1
-  set Viscosity = 0.1
-end
-subsection Particles
-  subsection Random particles
-    set Count = $n
-    set Radius = 0.04
-    set Density = 1.1
-    set Minimum gap = 0.02
-    set Seed = 1
-  end
-end
-subsection Collisions
-  set Model = repulsion
-end
-subsection Time
-  set End time = 0.02
-  set Time step = 0.005
-end
-subsection Output
-  set Directory = $work/n$n
-  set VTU interval = 0
-end
-PRM
+  { settling_disks_prm "$n" 64
+    printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$work/n$n"
+  } > "$work/n$n.prm"
   /usr/bin/time -f "%M" -o "$work/n$n.mem" "$exe" "$work/n$n.prm" > "$work/n$n.log"
   /usr/bin/python3 "$top/benchmarks/particle_count_row.py" "$work" "n$n" "$n" >> "$csv"
   tail -1 "$csv"
