@@ -28,9 +28,10 @@ namespace fdparticle
                         "velocity, multiplier and particle unknowns instead of an inner solve "
                         "(doc/method.md §8); if they do not reach the tolerance, the solve "
                         "continues from there with the inner solve. With the cut-cell patch "
-                        "the cheap form converges on the 3D scenes of doc/scaling.md, 5-7 times "
-                        "faster than the inner solve; on 2D scenes it stalls and the inner "
-                        "solve takes over. 0: always the inner solve.");
+                        "the cheap form converges on the 2D and 3D scenes of doc/scaling.md, 5-7 "
+                        "times faster than the inner solve in 3D; with many particles and no "
+                        "patch it stalls and the inner solve takes over. 0: always the inner "
+                        "solve.");
       prm.declare_entry("Inner tolerance", "1e-3", Patterns::Double(0, 1),
                         "Iterative solver: relative tolerance of the inner solve of the "
                         "velocity, multiplier and particle unknowns in each application of "
