@@ -78,6 +78,7 @@ plot rz(x) lw 2 t "Richardson-Zaki, n = 4.65", 1 - 6.55 * x lw 2 dt 2 t "Batchel
      csv u 4:(pick(100, 2, 10)) w p pt 7 ps 1.5 t "100 spheres, d/h = 2", \
      csv u 4:(pick(25, 2, 10)) w p pt 5 ps 1.5 t "25 spheres, d/h = 2", \
      csv u 4:(pick(25, 3, 10)) w p pt 9 ps 1.5 t "25 spheres, d/h = 3", \
-     csv u 4:(pick(25, 4, 10)) w p pt 11 ps 1.5 t "25 spheres, d/h = 4"
+     csv u 4:(pick(25, 4, 10)) w p pt 11 ps 1.5 t "25 spheres, d/h = 4", \
+     csv u 4:(pick(200, 2, 10)) w p pt 13 ps 1.5 t "200 spheres, d/h = 2"
 GP
 echo "wrote doc/suspension_3d.csv and doc/suspension_3d.png"
