@@ -35,7 +35,7 @@ def richardson_zaki(phi):
 
 runs = []
 for name in sorted(os.listdir(work)):
-    m = re.fullmatch(r"n(\d+)_L([\d.]+)_c(\d+)_s(\d+)", name)
+    m = re.fullmatch(r"n(\d+)_L([\d.]+)_c(\d+)_s(\d+)(?:_g([\d.]+))?", name)
     # Finished runs only: a step in statistics.csv and the peak memory written.
     if (not m or not os.path.exists(f"{work}/{name}/statistics.csv")
             or not os.path.exists(f"{work}/{name}.mem")):
@@ -45,6 +45,7 @@ for name in sorted(os.listdir(work)):
     if not memory or not rows:
         continue
     n, box, cells, seed = int(m[1]), float(m[2]), int(m[3]), int(m[4])
+    gap = float(m[5]) if m[5] else 0.25  # the placement's minimum gap (the scene's d/4)
     row = rows[-1]
     phi = n * 4 / 3 * math.pi * radius**3 / box**3
     slip = float(row["mean_particle_vz"]) - float(row["mean_vz"])
@@ -54,7 +55,7 @@ for name in sorted(os.listdir(work)):
         "unknowns": int(row["dofs"]), "linear_iterations": int(row["linear_iterations"]),
         "u_over_u0": -slip / u0, "ranks": int(open(f"{work}/{name}.ranks").read()),
         "seconds": float(row["wall_seconds"]),
-        "peak_MB": int(memory[-1]) / 1024})
+        "peak_MB": int(memory[-1]) / 1024, "minimum_gap": gap})
 
 # The discretization factor of each box and mesh, from its one-sphere runs.
 factors = defaultdict(list)
@@ -65,7 +66,7 @@ factor = {k: sum(v) / len(v) for k, v in factors.items()}
 
 columns = ["particles", "box", "cells", "solid_fraction", "cells_per_diameter", "seed",
            "unknowns", "linear_iterations", "u_over_u0", "u_over_u0_corrected",
-           "reference", "ranks", "seconds", "peak_MB"]
+           "reference", "ranks", "seconds", "peak_MB", "minimum_gap"]
 with open(out, "w") as f:
     f.write(",".join(columns) + "\n")
     for r in runs:
@@ -77,16 +78,16 @@ with open(out, "w") as f:
         f.write(",".join(f"{r[c]:.6g}" if isinstance(r[c], float) else str(r[c])
                          for c in columns) + "\n")
 
-print("N   phi     d/h  runs  U/U0 (min..max)           corrected          RZ 4.65  "
+print("N   phi     d/h  gap   runs  U/U0 (min..max)           corrected          RZ 4.65  "
       "Batchelor  factor  ranks  s/step  peak MB")
 groups = defaultdict(list)
 for r in runs:
-    groups[(r["particles"], r["box"], r["cells"])].append(r)
-for (n, box, cells), rs in sorted(groups.items()):
+    groups[(r["particles"], r["box"], r["cells"], r["minimum_gap"])].append(r)
+for (n, box, cells, gap), rs in sorted(groups.items()):
     phi = rs[0]["solid_fraction"]
     u = [r["u_over_u0"] for r in rs]
     c = [r["u_over_u0_corrected"] for r in rs]
-    print(f"{n:<4}{phi:<8.4f}{rs[0]['cells_per_diameter']:<5g}{len(rs):<6}"
+    print(f"{n:<4}{phi:<8.4f}{rs[0]['cells_per_diameter']:<5g}{gap:<6g}{len(rs):<6}"
           f"{sum(u) / len(u):.4f} ({min(u):.4f}..{max(u):.4f})  "
           f"{sum(c) / len(c):.4f} ({min(c):.4f}..{max(c):.4f})  "
           f"{richardson_zaki(phi):.4f}   {1 - 6.55 * phi:.4f}     "
@@ -100,7 +101,7 @@ for (n, box, cells), rs in sorted(groups.items()):
 by_n = defaultdict(list)
 for r in runs:
     if (r["particles"] > 1 and 0.1 <= r["solid_fraction"] <= 0.105
-            and abs(r["cells_per_diameter"] - 2) < 0.01):
+            and abs(r["cells_per_diameter"] - 2) < 0.01 and r["minimum_gap"] == 0.25):
         by_n[r["particles"]].append(r["u_over_u0_corrected"] / richardson_zaki(r["solid_fraction"]))
 for n, q in sorted(by_n.items()):
     print(f"phi 0.10-0.105, d/h = 2, N = {n}: corrected U/U0 over Richardson-Zaki "

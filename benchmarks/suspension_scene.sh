@@ -6,11 +6,12 @@
 # f = −(ρ_f + φ Δρ) g balances the weight of fluid and spheres: a periodic box has no
 # bottom, and without it the whole box would accelerate.
 #
-# suspension_prm N BOX CELLS SEED SOLVER DT END SCHEME DIRECTORY [SECTIONS]
-# prints the parameter file; SECTIONS (text) is added before the Quadrature subsection.
+# suspension_prm N BOX CELLS SEED SOLVER DT END SCHEME DIRECTORY [SECTIONS [GAP]]
+# prints the parameter file; SECTIONS (text) is added before the Quadrature subsection;
+# GAP is the minimum gap of the placement (default 0.25 = d/4).
 suspension_prm() {
   local n=$1 box=$2 cells=$3 seed=$4 solver=$5 dt=$6 end=$7 scheme=$8 directory=$9
-  local sections="${10:-}"
+  local sections="${10:-}" gap="${11:-0.25}"
   local force
   force=$(/usr/bin/python3 -c "import math; print(repr(1 + $n * 4 / 3 * math.pi * 0.125 / $box ** 3))")
   cat <<PRM
@@ -33,7 +34,7 @@ subsection Particles
     set Count       = $n
     set Radius      = 0.5
     set Density     = 2
-    set Minimum gap = 0.25
+    set Minimum gap = $gap
     set Seed        = $seed
   end
 end
