@@ -60,7 +60,7 @@ for case in "${cases[@]}"; do
 end
 "
   suspension_prm "$n" "$box" "$cells" "$seed" iterative 1 1 BDF1 "$work/$name" "$sections" \
-    "${gap:-0.25}" > "$work/$name.prm"
+    "$gap" > "$work/$name.prm"
   echo "$np" > "$work/$name.ranks"
   /usr/bin/time -f "%M" -o "$work/$name.mem" \
     mpirun --oversubscribe -np "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
