@@ -35,7 +35,7 @@ def richardson_zaki(phi):
 
 runs = []
 for name in sorted(os.listdir(work)):
-    m = re.fullmatch(r"n(\d+)_L([\d.]+)_c(\d+)_s(\d+)(?:_g([\d.]+))?", name)
+    m = re.fullmatch(r"n(\d+)_L([\d.]+)_c(\d+)_s(\d+)(?:_g[\d.]+)?", name)
     # Finished runs only: a step in statistics.csv and the peak memory written.
     if (not m or not os.path.exists(f"{work}/{name}/statistics.csv")
             or not os.path.exists(f"{work}/{name}.mem")):
@@ -45,7 +45,8 @@ for name in sorted(os.listdir(work)):
     if not memory or not rows:
         continue
     n, box, cells, seed = int(m[1]), float(m[2]), int(m[3]), int(m[4])
-    gap = float(m[5]) if m[5] else 0.25  # the placement's minimum gap (the scene's d/4)
+    # The placement's minimum gap, as the run was given it (suspension_scene.sh).
+    gap = float(re.search(r"set Minimum gap\s*=\s*(\S+)", open(f"{work}/{name}.prm").read())[1])
     row = rows[-1]
     phi = n * 4 / 3 * math.pi * radius**3 / box**3
     slip = float(row["mean_particle_vz"]) - float(row["mean_vz"])
