@@ -12,6 +12,7 @@
 #include <Epetra_Vector.h>
 
 #include <algorithm>
+#include <chrono>
 #include <iostream>
 #include <map>
 
@@ -22,6 +23,24 @@ namespace fdparticle
     constexpr unsigned int velocity_block   = NewtonSystem::Blocks::velocity,
                            multiplier_block = NewtonSystem::Blocks::multiplier,
                            pressure_block   = NewtonSystem::Blocks::pressure;
+
+    /// Adds the wall time of its scope to total.
+    class ScopedSeconds
+    {
+    public:
+      explicit ScopedSeconds(double &total)
+        : total(total)
+        , start(std::chrono::steady_clock::now())
+      {}
+      ~ScopedSeconds()
+      {
+        total += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+
+    private:
+      double &                                    total;
+      const std::chrono::steady_clock::time_point start;
+    };
 
     /// Local entries of a Trilinos vector (nullptr-safe for empty ones).
     double *values(TrilinosWrappers::MPI::Vector &v) { return v.trilinos_vector()[0]; }
@@ -39,6 +58,7 @@ namespace fdparticle
     patch.clear();
     patch_active = false;
     apply_seconds = patch_apply_seconds = 0;
+    times = ApplicationTimes();
     n_patch      = 0;
     max_patch_memory = 0;
     velocity_amg.clear();
@@ -318,20 +338,27 @@ namespace fdparticle
 
     // λ and y: z = S_λ⁻¹ r_λ, y = S_y⁻¹ (r_y − C z), λ = S_λ⁻¹ (r_λ − B y).
     std::copy_n(r + o_l, n_l, values(l_in));
-    multiplier_amg.vmult(l_out, l_in);
+    {
+      const ScopedSeconds t(times.multiplier_cycles);
+      multiplier_amg.vmult(l_out, l_in);
+    }
     const unsigned int m = op->n_particle_unknowns();
     Eigen::VectorXd    y = Eigen::VectorXd::Zero(m);
     if (m > 0)
       {
-        full = 0;
-        std::copy_n(values(l_out), n_l, values(full) + o_l);
-        y    = particle_schur.solve(op->particle_part(src) - system->border_product(full));
-        full = 0;
-        system->add_border(y, full);
-        double *      li = values(l_in);
-        const double *by = values(full) + o_l;
-        for (unsigned int i = 0; i < n_l; ++i)
-          li[i] -= by[i];
+        {
+          const ScopedSeconds t(times.particle_block);
+          full = 0;
+          std::copy_n(values(l_out), n_l, values(full) + o_l);
+          y    = particle_schur.solve(op->particle_part(src) - system->border_product(full));
+          full = 0;
+          system->add_border(y, full);
+          double *      li = values(l_in);
+          const double *by = values(full) + o_l;
+          for (unsigned int i = 0; i < n_l; ++i)
+            li[i] -= by[i];
+        }
+        const ScopedSeconds t(times.multiplier_cycles);
         multiplier_amg.vmult(l_out, l_in);
       }
     op->set_particle_part(dst, y);
@@ -342,7 +369,10 @@ namespace fdparticle
     double *      ui = values(u_in);
     for (unsigned int i = 0; i < n_u; ++i)
       ui[i] = r[i] - t[i];
-    velocity_amg.vmult(u_out, u_in);
+    {
+      const ScopedSeconds seconds(times.velocity_cycles);
+      velocity_amg.vmult(u_out, u_in);
+    }
 
     dst.block(0) = 0;
     std::copy_n(values(u_out), n_u, out);

@@ -3,6 +3,7 @@
 #include <fdparticle/solvers/bordered_operator.h>
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 namespace fdparticle
@@ -39,9 +40,11 @@ namespace fdparticle
 
   void BorderedOperator::vmult(BlockVector &dst, const BlockVector &src) const
   {
-    const Eigen::VectorXd y = particle_part(src);
+    const auto            start = std::chrono::steady_clock::now();
+    const Eigen::VectorXd y     = particle_part(src);
     system.A.vmult(dst.block(0), src.block(0));
     system.add_border(y, dst.block(0));
     set_particle_part(dst, system.border_product(src.block(0)) + system.D * y);
+    vmult_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 } // namespace fdparticle

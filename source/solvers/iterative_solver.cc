@@ -73,7 +73,10 @@ namespace fdparticle
                         "Print, for every linear solve, the FGMRES iterations, the inner "
                         "iterations, the residual reached, the cut-cell patch's size and "
                         "memory, and the wall time of building the preconditioner and of "
-                        "iterating (each with the patch's part; rank 0's times).");
+                        "iterating (each with the patch's part), and of the iterating's "
+                        "main parts: the products with the Newton matrix, the V-cycles of "
+                        "the velocity and multiplier blocks, and the particle block (rank "
+                        "0's times).");
       prm.declare_entry("Reuse preconditioner", "true", Patterns::Bool(),
                         "Iterative solver: keep the preconditioner for new Jacobians (Newton "
                         "iterations, time steps with the same mesh) while the iteration "
@@ -130,6 +133,8 @@ namespace fdparticle
 
     const Timer                   iteration_timer;
     const unsigned int            inner_before = preconditioner.inner_iterations();
+    const double                  products_before = op->vmult_time();
+    const BlockPreconditioner::ApplicationTimes parts_before = preconditioner.application_times();
     BorderedOperator::BlockVector rhs, solution;
     op->reinit_vector(rhs);
     op->reinit_vector(solution);
@@ -189,6 +194,7 @@ namespace fdparticle
     info.iterations       = steps;
     info.residual         = rhs_norm > 0 ? residual / rhs_norm : 0;
     info.inner_iterations = preconditioner.inner_iterations() - inner_before;
+    const BlockPreconditioner::ApplicationTimes &parts = preconditioner.application_times();
     if (verbose && Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
       std::cout << "  iterative solver: " << info.iterations << " FGMRES iterations ("
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "
@@ -201,7 +207,13 @@ namespace fdparticle
                               std::string("preconditioner reused, "))
                 << "iterations " << iteration_timer.wall_time()
                 << " s (preconditioner since built " << preconditioner.apply_time()
-                << " s, its patch " << preconditioner.patch_apply_time() << " s)" << std::endl;
+                << " s, its patch " << preconditioner.patch_apply_time()
+                << " s; this solve: operator products " << op->vmult_time() - products_before
+                << " s, velocity V-cycles " << parts.velocity_cycles - parts_before.velocity_cycles
+                << " s, multiplier V-cycles "
+                << parts.multiplier_cycles - parts_before.multiplier_cycles
+                << " s, particle block " << parts.particle_block - parts_before.particle_block
+                << " s)" << std::endl;
     if (reference_iterations == 0)
       reference_iterations = std::max(1u, info.iterations);
     else if (info.iterations > rebuild_growth * reference_iterations)

@@ -102,6 +102,16 @@ namespace fdparticle
     /// Inner FGMRES iterations since initialize().
     unsigned int inner_iterations() const { return n_inner_iterations; }
 
+    /// Where the applications' time goes (this rank's wall time, s, summed since
+    /// initialize()): the V-cycles of the velocity and of the multiplier block, and the
+    /// particle block (its border products and 6 × 6 solves), in the block triangle of
+    /// vmult_rest, the inner solve's share of the work.
+    struct ApplicationTimes
+    {
+      double velocity_cycles = 0, multiplier_cycles = 0, particle_block = 0;
+    };
+    const ApplicationTimes &application_times() const { return times; }
+
   private:
     /// Weight of the particle part of a cell in the pressure mass of S_p. The exact
     /// Schur complement of a cell almost filled by a particle is not as small as its
@@ -197,6 +207,7 @@ namespace fdparticle
     double                  max_patch_memory = 0;
     double                  setup_seconds = 0, patch_seconds = 0;
     mutable double          apply_seconds = 0, patch_apply_seconds = 0;
+    mutable ApplicationTimes times;
   };
 } // namespace fdparticle
 

@@ -40,10 +40,14 @@ namespace fdparticle
 
     unsigned int n_particle_unknowns() const { return system.n_particle_unknowns(); }
 
+    /// Wall time of all vmult calls so far (this rank's, s).
+    double vmult_time() const { return vmult_seconds; }
+
   private:
     const NewtonSystem &system;
     /// The particle unknowns' layout: all on rank 0.
     IndexSet particle_dofs;
+    mutable double vmult_seconds = 0;
   };
 } // namespace fdparticle
 
