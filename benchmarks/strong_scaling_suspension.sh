@@ -75,7 +75,7 @@ set style data histograms
 set style histogram clustered gap 1
 set style fill solid 0.6 border -1
 set ylabel "time on 1 rank / time on 2 ranks"
-set yrange [0:2.2]
+set yrange [0:2.6]
 set xtics rotate by -30
 set grid ytics
 set key top right
