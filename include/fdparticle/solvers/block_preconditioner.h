@@ -102,10 +102,10 @@ namespace fdparticle
     /// Inner FGMRES iterations since initialize().
     unsigned int inner_iterations() const { return n_inner_iterations; }
 
-    /// Where the applications' time goes (this rank's wall time, s, summed since
-    /// initialize()): the V-cycles of the velocity and of the multiplier block, and the
-    /// particle block (its border products and 6 × 6 solves), in the block triangle of
-    /// vmult_rest, the inner solve's share of the work.
+    /// Where the block triangle's time goes, in the cheap form and in the inner solve
+    /// alike (this rank's wall time, s, summed since initialize()): the V-cycles of the
+    /// velocity and of the multiplier block, and the particle block (its border products
+    /// and the solve with D − C S_λ⁻¹ B).
     struct ApplicationTimes
     {
       double velocity_cycles = 0, multiplier_cycles = 0, particle_block = 0;
