@@ -12,7 +12,6 @@
 #include <Epetra_Vector.h>
 
 #include <algorithm>
-#include <chrono>
 #include <iostream>
 #include <map>
 
@@ -30,16 +29,12 @@ namespace fdparticle
     public:
       explicit ScopedSeconds(double &total)
         : total(total)
-        , start(std::chrono::steady_clock::now())
       {}
-      ~ScopedSeconds()
-      {
-        total += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      }
+      ~ScopedSeconds() { total += timer.wall_time(); }
 
     private:
-      double &                                    total;
-      const std::chrono::steady_clock::time_point start;
+      double &    total;
+      const Timer timer;
     };
 
     /// Local entries of a Trilinos vector (nullptr-safe for empty ones).

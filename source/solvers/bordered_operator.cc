@@ -1,9 +1,9 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
 
 #include <fdparticle/solvers/bordered_operator.h>
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
 
 namespace fdparticle
@@ -40,11 +40,11 @@ namespace fdparticle
 
   void BorderedOperator::vmult(BlockVector &dst, const BlockVector &src) const
   {
-    const auto            start = std::chrono::steady_clock::now();
+    const Timer           timer;
     const Eigen::VectorXd y     = particle_part(src);
     system.A.vmult(dst.block(0), src.block(0));
     system.add_border(y, dst.block(0));
     set_particle_part(dst, system.border_product(src.block(0)) + system.D * y);
-    vmult_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    vmult_seconds += timer.wall_time();
   }
 } // namespace fdparticle

@@ -1,5 +1,6 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
 
 #include <fdparticle/solvers/direct_solver.h>
 
@@ -15,7 +16,6 @@
 #include <metis.h>
 
 #include <algorithm>
-#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -24,11 +24,6 @@ namespace fdparticle
 {
   namespace
   {
-    double seconds_since(const std::chrono::steady_clock::time_point start)
-    {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-
     /// Whether the owned rows of K have exactly the global columns of rows (in any order).
     bool has_rows(const Epetra_CrsMatrix &K, const std::vector<std::vector<int>> &rows)
     {
@@ -343,7 +338,7 @@ namespace fdparticle
 
   void DirectSolver::factorize_symbolic(const MPI_Comm comm)
   {
-    const auto start = std::chrono::steady_clock::now();
+    const dealii::Timer timer;
     // Amesos takes a non-const operator but only reads it.
     Epetra_CrsMatrix &E = const_cast<Epetra_CrsMatrix &>(*factored);
     problem             = std::make_unique<Epetra_LinearProblem>();
@@ -381,7 +376,7 @@ namespace fdparticle
                         "'Solver/Direct solver memory' allows; " + use_iterative_solver);
     symbolic_done = true;
     ++stats.n_symbolic;
-    const double t = seconds_since(start);
+    const double t = timer.wall_time();
     stats.symbolic_seconds += t;
     if (verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       std::cout << "  direct solver " << solver_type << ": symbolic factorization "
@@ -393,7 +388,7 @@ namespace fdparticle
   {
     if (!symbolic_done)
       factorize_symbolic(comm);
-    const auto start = std::chrono::steady_clock::now();
+    const dealii::Timer timer;
     // MUMPS sizes its work arrays from the analysis' estimate plus ICNTL(14) percent; with
     // many delayed pivots (the saddle point) the estimate can be short (INFOG(1) = -9 at
     // 2D h = 1/256). Then redo the analysis with more margin.
@@ -436,7 +431,7 @@ namespace fdparticle
     numeric_done = true;
     schur_done   = false; // Z and S belong to the previous values
     ++stats.n_numeric;
-    const double t = seconds_since(start);
+    const double t = timer.wall_time();
     stats.numeric_seconds += t;
     if (verbose)
       report_factorization(t, comm);
@@ -465,14 +460,14 @@ namespace fdparticle
   void DirectSolver::forward_backward(Epetra_MultiVector &rhs, Epetra_MultiVector &sol,
                                       const MPI_Comm comm)
   {
-    const auto start = std::chrono::steady_clock::now();
+    const dealii::Timer timer;
     problem->SetLHS(&sol);
     problem->SetRHS(&rhs);
     AssertThrow(solver->Solve() == 0, ExcMessage(solver_type + ": the solve failed."));
     problem->SetLHS(nullptr);
     problem->SetRHS(nullptr);
     ++stats.n_solves;
-    const double t = seconds_since(start);
+    const double t = timer.wall_time();
     stats.solve_seconds += t;
     if (verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       std::cout << "  direct solver " << solver_type << ": solve with " << rhs.NumVectors()
