@@ -21,6 +21,11 @@
 # Usage (regenerate):  bash benchmarks/suspension_time_3d.sh
 # EXE=PATH overrides the executable, WORK=DIR the work directory (a finished run there is
 # reused), NP=N the MPI ranks (1), STEPS the number of steps (103), SEED the placement (1).
+# N, BOX and CELLS change the scene (25, 5, 10; doc/particles.md runs N=100 BOX=8
+# CELLS=16 at the same φ and d/h, which writes doc/suspension_time_3d_n100.csv/.png);
+# SOLVER=iterative uses the iterative solver without the cut-cell patch, the faster one for
+# suspensions (doc/scaling.md, "Many particles"). A checkpoint every 5 steps lets a long
+# run be resumed (Checkpointing/Resume = true in the written prm).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
@@ -28,31 +33,42 @@ work="${WORK:-$top/benchmarks/work/suspension_time_3d}"
 np="${NP:-1}"
 steps="${STEPS:-103}"
 seed="${SEED:-1}"
-n=25 box=5 cells=10 dt=8000
+n="${N:-25}" box="${BOX:-5}" cells="${CELLS:-10}" solver="${SOLVER:-direct}" dt=8000
+csv_name="suspension_time_3d"
+[ "$n" = 25 ] || csv_name="suspension_time_3d_n$n"
 source "$top/benchmarks/suspension_scene.sh"
 mkdir -p "$work"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 name="n${n}_s${seed}_dt${dt}"
 # The contact force at contact: ten apparent weights Δρ g (4/3) π a³.
 stiffness=$(/usr/bin/python3 -c "import math; print(repr(10 * 4 / 3 * math.pi * 0.125))")
-collisions="subsection Collisions
+sections="subsection Collisions
   set Model     = repulsion
   set Range     = 0.1
   set Stiffness = $stiffness
 end
+subsection Checkpointing
+  set Interval = 5
+end
 "
+if [ "$solver" = iterative ]; then
+  sections+="subsection Solver
+  set Cut cell patch layers = -1
+end
+"
+fi
 if [ "$(tail -n +2 "$work/$name/statistics.csv" 2>/dev/null | wc -l)" -lt "$steps" ]; then
-  suspension_prm "$n" "$box" "$cells" "$seed" direct "$dt" $(( steps * dt )) BDF2 \
-    "$work/$name" "$collisions" > "$work/$name.prm"
+  suspension_prm "$n" "$box" "$cells" "$seed" "$solver" "$dt" $(( steps * dt )) BDF2 \
+    "$work/$name" "$sections" > "$work/$name.prm"
   /usr/bin/time -f "%M" -o "$work/$name.mem" \
     mpirun --oversubscribe -np "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1
 fi
 /usr/bin/python3 "$top/benchmarks/suspension_time_3d.py" "$work/$name" "$box" \
-  "$top/doc/suspension_time_3d.csv"
+  "$top/doc/$csv_name.csv"
 echo "peak memory: $(( $(cat "$work/$name.mem") / 1024 )) MB"
 gnuplot <<GP
 set terminal pngcairo size 760,520 noenhanced
-set output "$top/doc/suspension_time_3d.png"
+set output "$top/doc/$csv_name.png"
 set datafile separator ","
 set multiplot layout 2,1
 set lmargin 10; set rmargin 3
@@ -61,8 +77,8 @@ set xlabel "t U0 / d"
 set ylabel "U / U0"
 set yrange [0:1]
 phi = $n * 4.0 / 3 * pi * 0.125 / $box ** 3
-csv = "$top/doc/suspension_time_3d.csv"
-set title "25 random spheres settling, periodic box, phi = 0.105, d/h = 2 (suspension_time_3d.sh)"
+csv = "$top/doc/$csv_name.csv"
+set title sprintf("$n random spheres settling, periodic box, phi = %.3f, d/h = %g (suspension_time_3d.sh)", phi, $cells * 1.0 / $box)
 plot csv u 3:4 w l lw 2 t "U/U0, zero volume flux", (1 - phi) ** 4.65 lw 2 dt 2 t "Richardson-Zaki", \
      1 - 6.55 * phi lw 2 dt 3 t "Batchelor (1972)"
 unset title
@@ -73,4 +89,4 @@ plot csv u 3:7 w l lw 2 t "relative displacement / d", csv u 3:5 w l lw 2 t "sig
      csv u 3:6 w l lw 2 t "sigma of vx, vy / U0", csv u 3:(\$9 / 0.1 < 1 ? \$9 / 0.1 : 1/0) w p pt 7 ps 0.5 t "min gap / Range (below 1: in contact)"
 unset multiplot
 GP
-echo "wrote doc/suspension_time_3d.csv and doc/suspension_time_3d.png"
+echo "wrote doc/$csv_name.csv and doc/$csv_name.png"
