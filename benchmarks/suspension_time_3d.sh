@@ -65,7 +65,13 @@ if [ "$(tail -n +2 "$work/$name/statistics.csv" 2>/dev/null | wc -l)" -lt "$step
 fi
 /usr/bin/python3 "$top/benchmarks/suspension_time_3d.py" "$work/$name" "$box" \
   "$top/doc/$csv_name.csv"
-echo "peak memory: $(( $(cat "$work/$name.mem") / 1024 )) MB"
+# /usr/bin/time writes nothing when the run is stopped by hand (a long run to be resumed).
+memory_kb=$(tail -n 1 "$work/$name.mem" 2>/dev/null || true)
+if [[ "$memory_kb" =~ ^[0-9]+$ ]]; then
+  echo "peak memory: $(( memory_kb / 1024 )) MB"
+else
+  echo "peak memory: not measured (the run did not end by itself)"
+fi
 gnuplot <<GP
 set terminal pngcairo size 760,520 noenhanced
 set output "$top/doc/$csv_name.png"
