@@ -49,6 +49,9 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    each kind of column. DISTANCE must be a whole number of
                                    cells, so that the mesh moves onto itself.
 
+Every run, whatever its directives: its linear solver set up (factored or built a
+preconditioner) at most once per Jacobian in each step (statistics.csv).
+
 The output directory set in the prm is replaced by --work/ranks-N.
 """
 import argparse
@@ -337,6 +340,21 @@ def check_restart(opts, text, d, ranks, full_dir):
     return problems
 
 
+def check_setups(out_dir):
+    """Every run: the linear solver factors a matrix or builds a preconditioner at most once
+    per Jacobian (statistics.csv: solver_setups <= jacobians in each step); a preconditioner
+    rebuilt for the matrix it was built for is wasted work."""
+    path = os.path.join(out_dir, "statistics.csv")
+    if not os.path.exists(path):
+        return []
+    header, rows = read_csv(path)
+    if "solver_setups" not in header:
+        return ["statistics.csv has no solver_setups column"]
+    s, j = header.index("solver_setups"), header.index("jacobians")
+    return [f"{os.path.basename(out_dir)} step {r[0]}: {r[s]} solver setups for {r[j]} Jacobians"
+            for r in rows if float(r[s]) > float(r[j])]
+
+
 def check_other_solver(opts, text, d, name, ranks, first_dir):
     """Run the scene with the other linear solver; mismatches of particles.csv."""
     entries = testlib.prm_entries(text)
@@ -348,7 +366,8 @@ def check_other_solver(opts, text, d, name, ranks, first_dir):
     rel, abs_tol = (float(x) for x in d["test-solvers"].split()[:2])
     return [f"{other} solver: {p}" for p in
             compare_csv(os.path.join(o_dir, "particles.csv"),
-                        os.path.join(first_dir, "particles.csv"), rel, abs_tol)]
+                        os.path.join(first_dir, "particles.csv"), rel, abs_tol) +
+            check_setups(o_dir)]
 
 
 def main():
@@ -398,6 +417,7 @@ def main():
             failures.append(f"fdparticle exited with {result.returncode}")
             continue
         outputs.append(out_dir)
+        failures += check_setups(out_dir)
         if "test-expect-output" in d:
             on_ranks, expected = d["test-expect-output"].split(None, 1)
             if int(on_ranks) == ranks and expected not in result.stdout + result.stderr:

@@ -77,7 +77,9 @@ namespace fdparticle
               {"min_gap", s.min_gap},
               {"mean_particle_vx", s.mean_particle_velocity[0]},
               {"mean_particle_vy", s.mean_particle_velocity[1]},
-              {"mean_particle_vz", s.mean_particle_velocity[2]}};
+              {"mean_particle_vz", s.mean_particle_velocity[2]},
+              {"jacobians", double(s.jacobians)},
+              {"solver_setups", double(s.solver_setups)}};
     }
 
     /// One row of particles.csv per particle: in 2D z, the in-plane ω and torque are 0. The

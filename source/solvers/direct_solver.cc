@@ -479,14 +479,17 @@ namespace fdparticle
                                                TrilinosWrappers::MPI::Vector &x, Eigen::VectorXd &y)
   {
     const bool bordered = system.D.rows() > max_schur_unknowns;
-    if (!numeric_done)
+    const bool setup    = !numeric_done;
+    if (setup)
       {
         if (bordered)
           assemble_bordered(system);
         factored = bordered ? K.get() : &system.A.trilinos_matrix();
         factorize_numeric(system.A.get_mpi_communicator());
       }
-    return bordered ? solve_bordered(system, x, y) : solve_by_schur(system, x, y);
+    SolveInfo info = bordered ? solve_bordered(system, x, y) : solve_by_schur(system, x, y);
+    info.setup     = setup;
+    return info;
   }
 
   LinearSolver::SolveInfo DirectSolver::solve_bordered(const NewtonSystem &system,

@@ -5,8 +5,9 @@
 
 #include <fdparticle/solvers/iterative_solver.h>
 
-#include <sstream>
+#include <cmath>
 #include <iostream>
+#include <sstream>
 
 namespace fdparticle
 {
@@ -79,8 +80,12 @@ namespace fdparticle
                         "0's times).");
       prm.declare_entry("Reuse preconditioner", "true", Patterns::Bool(),
                         "Iterative solver: keep the preconditioner for new Jacobians (Newton "
-                        "iterations, time steps with the same mesh) while the iteration "
-                        "count stays within 1.5 times that of its first solve.");
+                        "iterations, time steps with the same mesh) while it converges about "
+                        "as fast as on the Jacobian it was built for: rebuilt when a solve "
+                        "needs more than 1.5 times the FGMRES iterations per tenfold "
+                        "residual reduction of the slowest solve with that Jacobian "
+                        "(doc/method.md §8). false: a new preconditioner for every "
+                        "Jacobian.");
     }
     prm.leave_subsection();
   }
@@ -109,8 +114,11 @@ namespace fdparticle
 
   void IterativeSolver::operator_changed()
   {
-    if (!reuse)
+    // A preconditioner is rebuilt only for a new Jacobian: the one it was built for cannot
+    // get a better one.
+    if (!reuse || drifted)
       stale = true;
+    fresh = false;
   }
 
   LinearSolver::SolveInfo IterativeSolver::solve(const NewtonSystem &system, const double tolerance,
@@ -126,9 +134,11 @@ namespace fdparticle
     if (rebuilt)
       {
         preconditioner.initialize(system, *op);
-        stale                = false;
-        reference_iterations = 0;
-        cheap_failed         = false;
+        stale          = false;
+        fresh          = true;
+        drifted        = false;
+        reference_rate = 0;
+        cheap_failed   = false;
       }
 
     const Timer                   iteration_timer;
@@ -191,6 +201,7 @@ namespace fdparticle
         residual = control.last_value();
       }
     SolveInfo info;
+    info.setup            = rebuilt;
     info.iterations       = steps;
     info.residual         = rhs_norm > 0 ? residual / rhs_norm : 0;
     info.inner_iterations = preconditioner.inner_iterations() - inner_before;
@@ -214,10 +225,18 @@ namespace fdparticle
                 << parts.multiplier_cycles - parts_before.multiplier_cycles
                 << " s, particle block " << parts.particle_block - parts_before.particle_block
                 << " s)" << std::endl;
-    if (reference_iterations == 0)
-      reference_iterations = std::max(1u, info.iterations);
-    else if (info.iterations > rebuild_growth * reference_iterations)
-      stale = true;
+    // Iterations per decade of residual reduction compare solves to different tolerances;
+    // the counts alone do not (a loose first solve of 3 iterations against a later one of 19
+    // to a 30 times smaller tolerance, same matrix, same preconditioner).
+    const double decades = info.residual > 0 ? -std::log10(info.residual) : 0;
+    if (decades >= min_rate_decades)
+      {
+        const double rate = info.iterations / decades;
+        if (fresh || reference_rate == 0)
+          reference_rate = std::max(reference_rate, rate);
+        else if (rate > rebuild_growth * reference_rate)
+          drifted = true;
+      }
 
     x.reinit(system.r_fe.locally_owned_elements(), system.r_fe.get_mpi_communicator());
     x = solution.block(0);

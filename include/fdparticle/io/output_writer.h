@@ -29,6 +29,9 @@ namespace fdparticle
     unsigned int linear_iterations = 0;
     /// Iterations of the inner solves of the iterative solver's preconditioner.
     unsigned int inner_iterations = 0;
+    /// Jacobians assembled, and factorizations (direct solver) or preconditioner builds
+    /// (iterative solver) of the linear solver.
+    unsigned int jacobians = 0, solver_setups = 0;
     double       residual = 0, wall_seconds = 0, initial_residual = 0;
     double       max_velocity = 0, hydrostatic_deviation = 0;
     /// Cells cut by a particle surface below the finest level (0 on a uniform mesh).

@@ -24,9 +24,12 @@ namespace fdparticle
    * block of the Krylov vectors, not eliminated.
    *
    * The preconditioner is built with the first solve after operator_changed(), and kept
-   * for later operators while it still converges quickly: a solve that needed more than
-   * rebuild_growth times the iterations of the first solve with the current
-   * preconditioner marks it for a rebuild at the next operator_changed().
+   * for later operators while it still converges about as fast as on the operator it was
+   * built for: its reference is the largest number of FGMRES iterations per decade of
+   * residual reduction among the solves with that operator; a solve with a later operator
+   * that needs more than rebuild_growth times as many marks it as drifted, and it is
+   * rebuilt at the next operator_changed(). It is never rebuilt for the operator it was
+   * built for (Newton with a reused Jacobian), which it cannot approximate better.
    *
    * Each solve first tries cheap_iterations FGMRES iterations with the cheap form of the
    * preconditioner (no inner solve, BlockPreconditioner::inner_solve off) and, if they do
@@ -53,14 +56,26 @@ namespace fdparticle
     bool         reuse          = true;
     bool         verbose        = false;
     /// See the class documentation: a preconditioner that needs more than this many times
-    /// its first iteration count has drifted too far from the operator.
+    /// its reference iterations per decade has drifted too far from the operator. 1.5: the
+    /// reference is already the slowest solve with the fresh preconditioner (one
+    /// preconditioner on one Jacobian took 2.5 to 11.6 iterations per decade in one step of
+    /// the adaptive 3D cavity, as the right-hand side and the tolerance changed), so a
+    /// drift must make a solve half again as slow as the worst of those; a rebuild costs
+    /// 40-90 iterations' time there (doc/performance.md).
     static constexpr double rebuild_growth = 1.5;
+    /// Solves that reduce their residual less than tenfold are too short to give a rate.
+    static constexpr double min_rate_decades = 1;
 
     std::unique_ptr<BorderedOperator> op;
     BlockPreconditioner               preconditioner;
     bool                              stale = true;
-    /// Iterations of the first solve with the current preconditioner.
-    unsigned int                      reference_iterations = 0;
+    /// No operator_changed() since the preconditioner was built.
+    bool                              fresh = false;
+    /// A solve with a later operator converged too slowly: rebuild with the next operator.
+    bool                              drifted = false;
+    /// FGMRES iterations per decade of residual reduction: the largest among the solves
+    /// with the operator the preconditioner was built for (0: none measured yet).
+    double                            reference_rate = 0;
     /// Whether the cheap form of the current preconditioner failed to converge.
     bool                              cheap_failed = false;
   };

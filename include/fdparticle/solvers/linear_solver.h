@@ -50,6 +50,9 @@ namespace fdparticle
       double       residual   = 0;
       /// Iterations of inner solves inside the preconditioner (0 if it has none).
       unsigned int inner_iterations = 0;
+      /// This solve factored the matrix (direct) or built the preconditioner (iterative):
+      /// the expensive part, which reuse saves.
+      bool setup = false;
     };
 
     virtual ~LinearSolver() = default;

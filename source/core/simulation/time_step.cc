@@ -97,6 +97,7 @@ namespace fdparticle
     TrilinosWrappers::MPI::Vector x0, dx;
     Eigen::VectorXd               y0, dy;
     NewtonSolver::Problem         problem;
+    unsigned int                  jacobians = 0;
     problem.linear   = !fluid.convection;
     problem.assemble = [&](const bool with_jacobian) {
       TimerOutput::Scope t(*timer, with_jacobian ? "assemble system" : "assemble residual");
@@ -112,10 +113,13 @@ namespace fdparticle
       lubrication.add_to_particle_rows(particles, c, system.r_p,
                                        with_jacobian ? &system.D : nullptr);
       if (with_jacobian)
-        linear_solver->operator_changed();
+        {
+          linear_solver->operator_changed();
+          ++jacobians;
+        }
       return system.residual_norm();
     };
-    unsigned int inner_iterations = 0;
+    unsigned int inner_iterations = 0, solver_setups = 0;
     problem.solve = [&](const double relative_tolerance) {
       LinearSolver::SolveInfo info;
       {
@@ -124,6 +128,7 @@ namespace fdparticle
         update_constraints.distribute(dx);
       }
       inner_iterations += info.inner_iterations;
+      solver_setups += info.setup;
       x0 = solution;
       y0 = particles.get_unknowns();
       return info.iterations;
@@ -143,6 +148,8 @@ namespace fdparticle
         stats.nonlinear_iterations = result.iterations;
         stats.linear_iterations    = result.linear_iterations;
         stats.inner_iterations     = inner_iterations;
+        stats.jacobians            = jacobians;
+        stats.solver_setups        = solver_setups;
         stats.residual             = result.residual;
         update_particle_forces(last_integrals);
       }
