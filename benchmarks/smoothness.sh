@@ -22,7 +22,9 @@
 #   bash benchmarks/smoothness.sh sediment2d:{seed,levelset,adaptive,adaptls}:100
 #   bash benchmarks/smoothness.sh --report          (only the table and plots)
 # Each argument is SCENE:VARIANT:END_TIME. WORK=DIR overrides the work directory, EXE=PATH
-# the executable.
+# the executable. TAG=NAME writes doc/smoothness_NAME.csv and doc/smoothness_SCENE_NAME.png
+# instead, so runs over a shorter window (in their own work directory) keep the full runs'
+# table and figures.
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
@@ -72,14 +74,16 @@ for spec in "$@"; do
 done
 
 # ---- Report --------------------------------------------------------------------------
-csv="$top/doc/smoothness.csv"
+csv="$top/doc/smoothness${TAG:+_$TAG}.csv"
 echo "scene,variant,t_end,steps,complete,smoothness,wall_seconds,dofs_first,dofs_last,newton_per_step,time_step_reductions" > "$csv"
 for dir in "$work"/*_*/; do
   dir=${dir%/}; name=$(basename "$dir"); scene=${name%%_*}; variant=${name#*_}
   [ -f "$dir/statistics.csv" ] || continue
   end=$(sed -n 's/^\s*set End time\s*=\s*//p' "$dir.prm" | tail -1)
   awk -F, -v scene="$scene" -v variant="$variant" -v end="$end" -v sfile="$dir/smoothness.csv" '
-    NR > 1 { n++; t = $2; w += $8; it += $6; h += $13; if (n == 1) d0 = $5; d1 = $5 }
+    NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }  # columns by name
+    { n++; t = $col["time"]; w += $col["wall_seconds"]; it += $col["nonlinear_iterations"]
+      h += $col["time_step_reductions"]; if (n == 1) d0 = $col["dofs"]; d1 = $col["dofs"] }
     END {
       s = "";
       if ((getline line < sfile) > 0 && (getline line < sfile) > 0) { split(line, f, ","); s = f[2] }
@@ -91,7 +95,7 @@ done
 column -s, -t "$csv"
 
 plot() { # scene column label
-  local scene=$1 col=$2 label=$3 png="$top/doc/smoothness_$1.png" cmd=""
+  local scene=$1 col=$2 label=$3 png="$top/doc/smoothness_$1${TAG:+_$TAG}.png" cmd=""
   for dir in "$work/${scene}"_*/; do
     dir=${dir%/}; [ -f "$dir/particles.csv" ] || continue
     [ "${dir##*_}" = long ] && continue
