@@ -9,8 +9,11 @@
 # Usage (regenerate):  bash benchmarks/dkt_3d.sh
 # EXE=PATH overrides the executable, WORK=DIR the work directory, LEVELS=N the particle
 # refinement levels (2 by default, d/h = 4; another value writes
-# doc/particles_dkt_3d_lN.png), NP=N runs on N MPI ranks; PLOT_ONLY=1 reads the output of
-# an earlier run in WORK/out.
+# doc/particles_dkt_3d_lN.png), NP=N runs on N MPI ranks, SOLVER=direct|iterative sets
+# Solver/Linear solver (the prm's 'auto' picks the direct solver below 500 k unknowns;
+# at 3 levels, 345 k, the iterative one is faster and needs half the memory:
+# doc/scaling.md); PLOT_ONLY=1 reads the output of an earlier run in WORK/out. The run
+# writes a checkpoint every 5 steps; RESUME=1 continues an interrupted run from it.
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
@@ -24,6 +27,17 @@ sed -e "s|set Directory    = output/dkt3d|set Directory    = $work/out|" \
     -e "s|set VTU interval = 10|set VTU interval = 0|" \
     -e "s|set Particle refinement levels = 2|set Particle refinement levels = $levels|" \
     "$top/prm/dkt3d.prm" > "$work/run.prm"
+printf 'subsection Checkpointing\n  set Interval = 5\n  set Resume   = %s\nend\n' \
+  "$([ "${RESUME:-0}" = 1 ] && echo true || echo false)" >> "$work/run.prm"
+# With the iterative solver, 300 cheap iterations in one Krylov basis: at d/h = 8 the cheap
+# form needs up to 130 iterations a solve once the pair settles fast (t > 0.07 s), and
+# past the default 100 the solve falls back to the inner solve, which made those steps
+# 2-3.5 times longer (doc/particles.md).
+case "${SOLVER:-}" in
+  "") ;;
+  iterative) printf 'subsection Solver\n  set Linear solver = iterative\n  set Cheap iterations = 300\n  set Krylov basis size = 300\nend\n' >> "$work/run.prm" ;;
+  *) printf 'subsection Solver\n  set Linear solver = %s\nend\n' "$SOLVER" >> "$work/run.prm" ;;
+esac
 if [ "${PLOT_ONLY:-0}" != 1 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   /usr/bin/time -f "%e s, %M kB peak (rank 0)" -o "$work/run.time" \
@@ -42,11 +56,14 @@ h = d / 2 ** levels  # the finest cell edge: base cells of edge d
 gap = [math.dist([float(p[k]) for k in "xyz"], [float(q[k]) for k in "xyz"]) - d
        for p, q in zip(a, b)]
 kiss = [float(a[i]["time"]) for i, s in enumerate(gap) if s < h]
+# The coarsest run's range, d/4: the same threshold at every resolution.
+quarter = next((float(a[i]["time"]) for i, s in enumerate(gap) if s < d / 4), None)
 passed = next((float(p["time"]) for p, q in zip(a, b) if float(q["z"]) < float(p["z"])), None)
 fmt = lambda t: "—" if t is None else f"t = {t:.3f} s ({t / unit:.1f} sqrt(d/g))"
 print(f"ran to t = {float(a[-1]['time']):.3f} s; smallest gap {min(gap):.4f} "
       f"({min(gap) / h:.2f} h); gap below h = {h:.4f} first at {fmt(kiss[0] if kiss else None)}, "
-      f"last at {fmt(kiss[-1] if kiss else None)}; trailer below leader from {fmt(passed)}")
+      f"last at {fmt(kiss[-1] if kiss else None)}; gap below d/4 first at {fmt(quarter)}; "
+      f"trailer below leader from {fmt(passed)}")
 with open(f"{work}/dkt.dat", "w") as f:
     for p, q, s in zip(a, b, gap):
         across = math.hypot(float(p["x"]) - float(q["x"]), float(p["y"]) - float(q["y"]))

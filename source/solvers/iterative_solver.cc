@@ -31,8 +31,11 @@ namespace fdparticle
                         "continues from there with the inner solve. With the cut-cell patch "
                         "the cheap form converges on the 2D and 3D scenes of doc/scaling.md, 5-7 "
                         "times faster than the inner solve in 3D; with many particles and no "
-                        "patch it stalls and the inner solve takes over. 0: always the inner "
-                        "solve.");
+                        "patch it stalls and the inner solve takes over. The switch costs: on "
+                        "the 3D DKT pair at d/h = 8 (doc/particles.md) solves need up to 160 "
+                        "cheap iterations; with 100 the steps that fell back to the inner "
+                        "solve took 2-3.5 times as long as their neighbours, and with 300 (and "
+                        "a Krylov basis of 300) none fell back. 0: always the inner solve.");
       prm.declare_entry("Inner tolerance", "1e-3", Patterns::Double(0, 1),
                         "Iterative solver: relative tolerance of the inner solve of the "
                         "velocity, multiplier and particle unknowns in each application of "
