@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Strong scaling of the iterative solver (doc/scaling.md, "One rank per patch"): the 3D
+# Strong scaling of the iterative solver (doc/scaling.md, "The patch on all ranks"): the 3D
 # sediment step of benchmarks/scaling_scenes.sh at growing n on 1 and 2 ranks, with
 # `Iterative solver statistics` for the parts of the solve. Writes doc/strong_scaling.csv
 # (one row per run: unknowns, FGMRES and inner iterations, the step's wall time, the
@@ -7,12 +7,13 @@
 # the preconditioner, its patch's part, the iterations and the patch's part of those) and
 # doc/strong_scaling.png (step time against unknowns, both rank counts). Compare within
 # one run (the machine is shared). PLOT_ONLY=1 redraws the plot from the CSV.
-# Usage: bash benchmarks/strong_scaling.sh   (~7 min on 2 cores, 24 GB, with SIZES="12 16 21")
+# Usage: bash benchmarks/strong_scaling.sh   (~8 min on 2 cores, 24 GB, with SIZES="12 16 21 24";
+# 9 GB on one rank at n = 24)
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/strong_scaling}"
-sizes="${SIZES:-12 16 21}"
+sizes="${SIZES:-12 16 21 24}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
 export OMPI_MCA_mpi_yield_when_idle=1

@@ -150,25 +150,25 @@ namespace fdparticle
     initialize_pressure_cells();
     initialize_pressure_laplacian();
     initialize_particle_block();
-    // A patch that is too large or cannot be factored on some rank is dropped on all of
-    // them: the preconditioner still works without it (the cheap form may then stall and
-    // hand over to the inner solve), and a smaller time step would not make it fit.
+    // A patch that is too large or cannot be factored is dropped (on all ranks, which
+    // factor it together): the preconditioner still works without it (the cheap form may
+    // then stall and hand over to the inner solve), and a smaller time step would not make
+    // it fit.
     const Timer       patch_timer;
     const std::string failure =
       patch_layers >= 0 ?
         patch.initialize(*system, patch_layers, patch_fluid_fraction, patch_memory_limit) :
         "";
-    if (Utilities::MPI::logical_or(!failure.empty(), comm))
+    if (!failure.empty())
       {
-        if (!failure.empty() && !patch_failure_reported)
+        if (rank == 0 && !patch_failure_reported)
           std::cerr << "  warning: the cut-cell patch of the iterative solver was not "
-                       "factored on rank "
-                    << rank << " (" << failure
+                       "factored ("
+                    << failure
                     << "); the solver goes on without it, with more iterations "
                        "(Solver/Cut cell patch memory, doc/scaling.md)."
                     << std::endl;
         patch_failure_reported = true;
-        patch.clear();
       }
     n_patch      = Utilities::MPI::sum<types::global_dof_index>(patch.size(), comm);
     max_patch_memory = Utilities::MPI::max(patch.memory(), comm);

@@ -1,11 +1,16 @@
 #include <deal.II/base/mpi.h>
 
 #include <fdparticle/solvers/cut_cell_patch.h>
+#include <fdparticle/solvers/mumps.h>
 
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Import.h>
+#include <Epetra_LinearProblem.h>
 #include <Epetra_Vector.h>
-#include <umfpack.h>
+#include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
 #include <iomanip>
@@ -32,32 +37,37 @@ namespace fdparticle
     }
   } // namespace
 
+  CutCellPatch::CutCellPatch() = default;
   CutCellPatch::~CutCellPatch() { clear(); }
 
   void CutCellPatch::clear()
   {
-    dofs.clear();
-    component.clear();
-    import.reset();
+    // The factorization refers to the problem, the problem to the matrix and vectors.
+    solver.reset();
+    problem.reset();
+    matrix.reset();
     residual.reset();
     correction.reset();
     rows.reset();
     column_import.reset();
     columns.reset();
-    if (numeric != nullptr)
-      umfpack_di_free_numeric(&numeric);
+    dofs.clear();
+    component.clear();
+    ordering.clear();
     factor_memory = 0;
-    matrix        = Eigen::SparseMatrix<double>();
   }
 
   std::string CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers,
                                        const double max_fluid_fraction, const double memory_limit)
   {
     clear();
+    const MPI_Comm                comm = system.r_fe.get_mpi_communicator();
     std::set<std::pair<int, int>> meeting;
-    const std::vector<int> label = grow(system, layers, max_fluid_fraction, meeting);
-    assemble(system, distribute(system, label, meeting));
-    return dofs.empty() ? "" : factor(memory_limit);
+    find_components(system, grow(system, layers, max_fluid_fraction, meeting), meeting);
+    if (dealii::Utilities::MPI::sum<unsigned long long>(dofs.size(), comm) == 0)
+      return "";
+    assemble(system);
+    return factor(memory_limit, comm);
   }
 
   std::vector<int> CutCellPatch::grow(const NewtonSystem &system, const unsigned int layers,
@@ -68,7 +78,7 @@ namespace fdparticle
     const Epetra_CrsMatrix &E  = system.A.trilinos_matrix();
     const auto &            b  = system.blocks;
     const MPI_Comm          comm  = system.r_fe.get_mpi_communicator();
-    const auto &            range = b.range[Utilities::MPI::this_mpi_process(comm)];
+    const auto &            range = b.range[dealii::Utilities::MPI::this_mpi_process(comm)];
     // This rank's DoFs, numbered locally from 0: u | λ | p (NewtonSystem::Blocks).
     const long long    first = range[0], end = range[Blocks::n_blocks];
     const unsigned int n_local = end - first;
@@ -139,7 +149,7 @@ namespace fdparticle
     };
     // f(local DoF, particle) for what other ranks found for this one.
     auto receive = [&](const auto &f) {
-      for (const auto &[from, list] : Utilities::MPI::some_to_some(comm, to_owner))
+      for (const auto &[from, list] : dealii::Utilities::MPI::some_to_some(comm, to_owner))
         for (unsigned int k = 0; k < list.size(); k += 2)
           f(static_cast<unsigned int>(list[k] - first), static_cast<int>(list[k + 1]));
       to_owner.clear();
@@ -178,20 +188,18 @@ namespace fdparticle
     return label;
   }
 
-  Epetra_Map CutCellPatch::distribute(const NewtonSystem &                 system,
-                                      const std::vector<int> &             label,
-                                      const std::set<std::pair<int, int>> &meeting)
+  void CutCellPatch::find_components(const NewtonSystem &                 system,
+                                     const std::vector<int> &             label,
+                                     const std::set<std::pair<int, int>> &meeting)
   {
-    const MPI_Comm     comm  = system.r_fe.get_mpi_communicator();
-    const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
-    const long long    first = system.blocks.range[rank][0];
+    const MPI_Comm comm = system.r_fe.get_mpi_communicator();
 
     // The components: particles joined where their rings meet on any rank, each named by
     // its smallest particle (the same on every rank).
     int n_labels = 0;
     for (const int l : label)
       n_labels = std::max(n_labels, l + 1);
-    n_labels = Utilities::MPI::max(n_labels, comm);
+    n_labels = dealii::Utilities::MPI::max(n_labels, comm);
     std::vector<int> root(n_labels);
     std::iota(root.begin(), root.end(), 0);
     auto find = [&](int l) {
@@ -199,168 +207,156 @@ namespace fdparticle
         l = root[l] = root[root[l]];
       return l;
     };
-    for (const auto &pairs : Utilities::MPI::all_gather(
+    for (const auto &pairs : dealii::Utilities::MPI::all_gather(
            comm, std::vector<std::pair<int, int>>(meeting.begin(), meeting.end())))
       for (const auto &[a, c] : pairs)
         {
           const int ra = find(a), rc = find(c);
           root[std::max(ra, rc)] = std::min(ra, rc);
         }
-
-    // Each component is solved by the rank that owns most of its DoFs (the first of a tie):
-    // the least to send, and the particles spread over the ranks as the partition does.
-    std::vector<unsigned int> owned(n_labels, 0);
-    for (const int l : label)
-      if (l >= 0)
-        ++owned[find(l)];
-    const auto                counts = Utilities::MPI::all_gather(comm, owned);
-    std::vector<unsigned int> solver(n_labels, 0);
-    for (int l = 0; l < n_labels; ++l)
-      for (unsigned int r = 1; r < counts.size(); ++r)
-        if (counts[r][l] > counts[solver[l]][l])
-          solver[l] = r;
-
-    std::vector<std::pair<long long, int>>         solved;
-    std::map<unsigned int, std::vector<long long>> to_solver;
     for (unsigned int i = 0; i < label.size(); ++i)
       if (label[i] >= 0)
         {
-          const int c = find(label[i]);
-          if (solver[c] == rank)
-            solved.emplace_back(first + i, c);
-          else
-            {
-              to_solver[solver[c]].push_back(first + i);
-              to_solver[solver[c]].push_back(c);
-            }
+          dofs.push_back(i);
+          component.push_back(find(label[i]));
         }
-    for (const auto &[from, list] : Utilities::MPI::some_to_some(comm, to_solver))
-      for (unsigned int k = 0; k < list.size(); k += 2)
-        solved.emplace_back(list[k], static_cast<int>(list[k + 1]));
-    std::sort(solved.begin(), solved.end());
-    for (const auto &[g, c] : solved)
-      {
-        dofs.push_back(g);
-        component.push_back(c);
-      }
-
-    IndexSet set(system.r_fe.size());
-    set.add_indices(dofs.begin(), dofs.end());
-    set.compress();
-    const Epetra_Map map = set.make_trilinos_map(comm, true);
-    Assert(map.NumMyElements() == static_cast<int>(dofs.size()), ExcInternalError());
-    import     = std::make_unique<Epetra_Import>(map, system.A.trilinos_matrix().RowMap());
-    residual   = std::make_unique<Epetra_Vector>(map);
-    correction = std::make_unique<Epetra_Vector>(map);
-    return map;
   }
 
-  void CutCellPatch::assemble(const NewtonSystem &system, const Epetra_Map &map)
+  void CutCellPatch::assemble(const NewtonSystem &system)
   {
-    // The patch DoFs' rows of A (collective), numbered in the order of dofs, and how to
-    // fetch the entries of a vector at their columns.
-    const Epetra_CrsMatrix &E = system.A.trilinos_matrix();
-    rows = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
-    rows->Import(E, *import, Insert);
+    const Epetra_CrsMatrix &E  = system.A.trilinos_matrix();
+    const Epetra_Comm &     ec = E.Comm();
+
+    // The patch DoFs' rows of A (a local copy: the rows stay with their owners) and how
+    // to fetch the entries of a vector at their columns.
+    IndexSet owned(system.r_fe.size());
+    for (const int i : dofs)
+      owned.add_index(E.GRID64(i));
+    owned.compress();
+    const Epetra_Map    row_map = owned.make_trilinos_map(system.r_fe.get_mpi_communicator(), true);
+    const Epetra_Import local(row_map, E.RowMap());
+    rows = std::make_unique<Epetra_CrsMatrix>(Copy, row_map, 0);
+    rows->Import(E, local, Insert);
     rows->FillComplete(E.DomainMap(), E.RangeMap());
     column_import = std::make_unique<Epetra_Import>(rows->ColMap(), E.RowMap());
     columns       = std::make_unique<Epetra_Vector>(rows->ColMap());
 
-    // Patch number of the global DoF g, or −1.
-    auto patch_index = [&](const long long g) -> int {
-      const auto it = std::lower_bound(dofs.begin(), dofs.end(), g);
-      return it != dofs.end() && *it == g ? it - dofs.begin() : -1;
-    };
-    std::vector<Eigen::Triplet<double>> entries;
+    // The patch numbers 0 … n − 1, in the order of the ranks and of their DoFs, and the
+    // component of every patch DoF, at the columns of the patch rows (−1: not in the
+    // patch).
+    const Epetra_Map patch_map(-1, static_cast<int>(dofs.size()), 0, ec);
+    Epetra_Vector    number(E.RowMap()), part(E.RowMap());
+    number.PutScalar(-1);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      {
+        number[dofs[i]] = patch_map.GID(i);
+        part[dofs[i]]   = component[i];
+      }
+    Epetra_Vector column_number(rows->ColMap()), column_part(rows->ColMap());
+    column_number.Import(number, *column_import, Insert);
+    column_part.Import(part, *column_import, Insert);
+
+    matrix = std::make_unique<Epetra_CrsMatrix>(Copy, patch_map, 0);
+    std::vector<int>    cols;
+    std::vector<double> values;
     for (int r = 0; r < rows->NumMyRows(); ++r)
       {
-        const int i = patch_index(rows->GRID64(r));
-        Assert(i >= 0, ExcInternalError());
-        for_each_entry(*rows, r, [&](const long long g, const double value) {
-          const int j = patch_index(g);
-          if (j >= 0 && component[j] == component[i])
-            entries.emplace_back(i, j, value);
-        });
+        int     n;
+        double *v;
+        int *   c;
+        rows->ExtractMyRowView(r, n, v, c);
+        cols.clear();
+        values.clear();
+        for (int k = 0; k < n; ++k)
+          if (column_number[c[k]] >= 0 && column_part[c[k]] == component[r])
+            {
+              cols.push_back(static_cast<int>(column_number[c[k]]));
+              values.push_back(v[k]);
+            }
+        AssertThrow(matrix->InsertGlobalValues(patch_map.GID(r), cols.size(), values.data(),
+                                               cols.data()) == 0,
+                    ExcInternalError());
       }
-    const unsigned int n = dofs.size();
-    matrix.resize(n, n);
-    matrix.setFromTriplets(entries.begin(), entries.end());
-    matrix.makeCompressed();
+    AssertThrow(matrix->FillComplete() == 0, ExcInternalError());
+    residual   = std::make_unique<Epetra_Vector>(patch_map);
+    correction = std::make_unique<Epetra_Vector>(patch_map);
   }
 
-  std::string CutCellPatch::factor(const double memory_limit)
+  std::string CutCellPatch::factor(const double memory_limit, const MPI_Comm comm)
   {
-    control.resize(UMFPACK_CONTROL);
-    umfpack_di_defaults(control.data());
-    control[UMFPACK_IRSTEP]              = 0;
-    control[UMFPACK_STRATEGY]            = UMFPACK_STRATEGY_SYMMETRIC;
-    control[UMFPACK_ORDERING]            = UMFPACK_ORDERING_CHOLMOD;
-    control[UMFPACK_SYM_PIVOT_TOLERANCE] = pivot_tolerance;
-    control[UMFPACK_PIVOT_TOLERANCE]     = pivot_tolerance;
-    std::vector<double> info(UMFPACK_INFO);
-    const int           n = matrix.rows();
-    auto why = [&](const int status) -> std::string {
+    problem = std::make_unique<Epetra_LinearProblem>(matrix.get(), correction.get(),
+                                                     residual.get());
+    ordering                   = mumps::nested_dissection(*matrix, comm);
+    const unsigned long long n = matrix->NumGlobalRows64();
+    auto why = [&](const std::string &reason) {
       clear();
-      return status == UMFPACK_ERROR_out_of_memory ? "UMFPACK ran out of memory" :
-             status == UMFPACK_WARNING_singular_matrix ? "UMFPACK found it singular" :
-                                                         "UMFPACK status " + std::to_string(status);
+      return reason;
     };
-    void *symbolic = nullptr;
-    int   status   = umfpack_di_symbolic(n, n, matrix.outerIndexPtr(), matrix.innerIndexPtr(),
-                                     matrix.valuePtr(), &symbolic, control.data(), info.data());
-    if (status != UMFPACK_OK)
-      return why(status);
-    const double estimate = bytes_per_factor_entry * info[UMFPACK_SYMMETRIC_LUNZ];
-    if (memory_limit > 0 && estimate > memory_limit)
+    Amesos_Mumps *amesos_mumps = nullptr;
+    for (int attempt = 0, workspace = mumps::initial_workspace_percent;; ++attempt)
       {
-        umfpack_di_free_symbolic(&symbolic);
-        clear();
-        std::ostringstream s;
-        s << std::setprecision(2) << "its " << n << " unknowns would need about "
-          << estimate / 1e9 << " GB to factor, more than the " << memory_limit / 1e9
-          << " GB allowed";
-        return s.str();
+        // A new analysis needs a new solver (as in DirectSolver).
+        Amesos factory;
+        solver.reset(factory.Create("Amesos_Mumps", *problem));
+        amesos_mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
+        AssertThrow(amesos_mumps != nullptr,
+                    ExcMessage("This Trilinos has no MUMPS (Amesos_Mumps), which the "
+                               "iterative solver's cut-cell patch needs."));
+        Teuchos::ParameterList parameters;
+        Teuchos::ParameterList &controls = parameters.sublist("mumps");
+        controls.set("ICNTL(7)", 1); // the ordering given
+        controls.set("ICNTL(14)", workspace);
+        controls.set("PermIn", ordering.empty() ? static_cast<int *>(nullptr) : ordering.data());
+        AssertThrow(solver->SetParameters(parameters) == 0, ExcInternalError());
+        if (solver->SymbolicFactorization() != 0)
+          return why("MUMPS's analysis failed (INFOG(1) = " +
+                     std::to_string(amesos_mumps->GetINFOG()[0]) + ")");
+        // INFOG(16): the analysis' estimate of the factorization's memory on the rank that
+        // needs most (MB); the same on every rank.
+        const double estimate = 1e6 * amesos_mumps->GetINFOG()[15];
+        if (memory_limit > 0 && estimate > memory_limit)
+          {
+            std::ostringstream s;
+            s << std::setprecision(2) << "its " << n << " unknowns would need about "
+              << estimate / 1e9 << " GB on one rank to factor, more than the "
+              << memory_limit / 1e9 << " GB allowed";
+            return why(s.str());
+          }
+        if (solver->NumericFactorization() == 0)
+          break;
+        const int info = amesos_mumps->GetINFOG()[0];
+        if (!mumps::short_of_workspace(info) || attempt == mumps::max_workspace_retries)
+          return why(info == mumps::singular      ? "MUMPS found it singular" :
+                     info == mumps::out_of_memory ? "MUMPS could not allocate its factors" :
+                                                    "MUMPS's INFOG(1) = " + std::to_string(info));
+        workspace *= mumps::workspace_growth;
       }
-    status = umfpack_di_numeric(matrix.outerIndexPtr(), matrix.innerIndexPtr(),
-                                matrix.valuePtr(), symbolic, &numeric, control.data(), info.data());
-    umfpack_di_free_symbolic(&symbolic);
-    if (status != UMFPACK_OK)
-      return why(status);
-    factor_memory = info[UMFPACK_PEAK_MEMORY] * info[UMFPACK_SIZE_OF_UNIT];
+    factor_memory = 1e6 * amesos_mumps->GetINFOG()[17];
     return "";
   }
 
   void CutCellPatch::add_correction(TrilinosWrappers::MPI::Vector &      x,
                                     const TrilinosWrappers::MPI::Vector &r) const
   {
-    // The transfers are collective: every rank takes part, with or without a patch.
-    residual->Import(r.trilinos_vector(), *import, Insert);
+    // r − A x on the patch rows only (their rows of A are this rank's).
     columns->Import(x.trilinos_vector(), *column_import, Insert);
-    if (!dofs.empty())
+    const double *xc = columns->Values();
+    const double *rv = r.trilinos_vector().Values();
+    double *      ri = residual->Values();
+    for (unsigned int i = 0; i < dofs.size(); ++i)
       {
-        // r − A x on the patch rows only (the map of the patch DoFs is in the order of
-        // dofs: sorted, from an IndexSet).
-        const double *xc = columns->Values();
-        double *      ri = residual->Values();
-        for (int i = 0; i < rows->NumMyRows(); ++i)
-          {
-            int     n;
-            double *v;
-            int *   c;
-            rows->ExtractMyRowView(i, n, v, c);
-            for (int k = 0; k < n; ++k)
-              ri[i] -= v[k] * xc[c[k]];
-          }
-        const int status =
-          umfpack_di_solve(UMFPACK_A, matrix.outerIndexPtr(), matrix.innerIndexPtr(),
-                           matrix.valuePtr(), correction->Values(), residual->Values(), numeric,
-                           control.data(), nullptr);
-        AssertThrow(status == UMFPACK_OK,
-                    ExcMessage("UMFPACK failed to solve with the factored cut-cell patch "
-                               "(status " + std::to_string(status) + ")."));
+        int     n;
+        double *v;
+        int *   c;
+        rows->ExtractMyRowView(i, n, v, c);
+        ri[i] = rv[dofs[i]];
+        for (int k = 0; k < n; ++k)
+          ri[i] -= v[k] * xc[c[k]];
       }
-    // Back to the owners, added: each DoF is in one rank's patch. (Epetra's Add would
-    // overwrite the entries that stay on this rank.)
-    x.trilinos_vector().Export(*correction, *import, Epetra_AddLocalAlso);
+    AssertThrow(solver->Solve() == 0,
+                ExcMessage("MUMPS failed to solve with the factored cut-cell patch."));
+    double *xv = x.trilinos_vector().Values();
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      xv[dofs[i]] += (*correction)[i];
   }
 } // namespace fdparticle

@@ -3,6 +3,7 @@
 #include <deal.II/base/timer.h>
 
 #include <fdparticle/solvers/direct_solver.h>
+#include <fdparticle/solvers/mumps.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -13,7 +14,6 @@
 #include <Epetra_MultiVector.h>
 #include <Epetra_Vector.h>
 #include <Teuchos_ParameterList.hpp>
-#include <metis.h>
 
 #include <algorithm>
 #include <iomanip>
@@ -74,107 +74,11 @@ namespace fdparticle
         }
     }
 
-    /// MUMPS's INFOG(1) for a numerically singular matrix, and for an allocation that
-    /// failed (INFOG(2): what it asked for, in entries of its real arrays).
-    constexpr int mumps_singular = -10, mumps_out_of_memory = -13;
-
     /// What the two out-of-memory stops advise.
     const std::string use_iterative_solver =
       "'Solver/Linear solver = iterative' needs about half the memory and grows linearly "
       "with the unknowns (doc/scaling.md).";
 
-    /// MUMPS reports large counts as −(count in millions).
-    double mumps_count(const int v) { return v >= 0 ? double(v) : -1e6 * v; }
-
-    /**
-     * Nested-dissection ordering of the symmetrized pattern of A, computed by METIS on
-     * rank 0 after gathering the pattern there (MUMPS analyses on the host anyway).
-     * Returns MUMPS's PERM_IN on rank 0 (1-based position of each unknown in the pivot
-     * order), an empty vector elsewhere.
-     */
-    std::vector<int> metis_nested_dissection(const Epetra_CrsMatrix &E, const MPI_Comm comm)
-    {
-      // Local rows as (global row, global column) pairs, without the diagonal.
-      std::vector<int> local_edges;
-      local_edges.reserve(2 * E.NumMyNonzeros());
-      for (int r = 0; r < E.NumMyRows(); ++r)
-        {
-          int     n;
-          int *   cols;
-          double *vals;
-          E.ExtractMyRowView(r, n, vals, cols);
-          const int row = E.GRID(r);
-          for (int k = 0; k < n; ++k)
-            {
-              const int col = E.GCID(cols[k]);
-              if (col != row)
-                {
-                  local_edges.push_back(row);
-                  local_edges.push_back(col);
-                }
-            }
-        }
-
-      const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
-      const unsigned int rank    = dealii::Utilities::MPI::this_mpi_process(comm);
-      const int          my_size = local_edges.size();
-      std::vector<int>   sizes(n_ranks), offsets(n_ranks + 1, 0);
-      MPI_Gather(&my_size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm);
-      for (unsigned int p = 0; p < n_ranks; ++p)
-        offsets[p + 1] = offsets[p] + sizes[p];
-      std::vector<int> edges(rank == 0 ? offsets[n_ranks] : 0);
-      MPI_Gatherv(local_edges.data(), my_size, MPI_INT, edges.data(), sizes.data(),
-                  offsets.data(), MPI_INT, 0, comm);
-      local_edges = std::vector<int>();
-      if (rank != 0)
-        return {};
-
-      // Adjacency of the symmetrized graph in CSR form: count, fill both directions,
-      // then sort and remove duplicates row by row.
-      const idx_t      n = E.NumGlobalRows();
-      std::vector<idx_t> degree(n + 1, 0);
-      for (std::size_t e = 0; e < edges.size(); e += 2)
-        {
-          ++degree[edges[e] + 1];
-          ++degree[edges[e + 1] + 1];
-        }
-      for (idx_t i = 0; i < n; ++i)
-        degree[i + 1] += degree[i];
-      std::vector<idx_t> adjacency(degree[n]);
-      std::vector<idx_t> fill(degree.begin(), degree.end() - 1);
-      for (std::size_t e = 0; e < edges.size(); e += 2)
-        {
-          adjacency[fill[edges[e]]++]     = edges[e + 1];
-          adjacency[fill[edges[e + 1]]++] = edges[e];
-        }
-      edges = std::vector<int>();
-      std::vector<idx_t> xadj(n + 1, 0);
-      idx_t              out = 0;
-      for (idx_t i = 0; i < n; ++i)
-        {
-          auto first = adjacency.begin() + degree[i], last = adjacency.begin() + degree[i + 1];
-          std::sort(first, last);
-          last = std::unique(first, last);
-          for (auto it = first; it != last; ++it)
-            adjacency[out++] = *it;
-          xadj[i + 1] = out;
-        }
-      adjacency.resize(out);
-
-      idx_t options[METIS_NOPTIONS];
-      METIS_SetDefaultOptions(options);
-      options[METIS_OPTION_NUMBERING] = 0;
-      std::vector<idx_t> perm(n), iperm(n);
-      idx_t              nv  = n;
-      const int          ret = METIS_NodeND(&nv, xadj.data(), adjacency.data(), nullptr, options,
-                                   perm.data(), iperm.data());
-      AssertThrow(ret == METIS_OK, ExcMessage("METIS_NodeND failed."));
-      // iperm[i] is the new (0-based) position of unknown i.
-      std::vector<int> perm_in(n);
-      for (idx_t i = 0; i < n; ++i)
-        perm_in[i] = iperm[i] + 1;
-      return perm_in;
-    }
   } // namespace
 
   DirectSolver::DirectSolver()  = default;
@@ -353,13 +257,13 @@ namespace fdparticle
     Teuchos::ParameterList parameters;
     if (solver_type == "Amesos_Mumps")
       {
-        Teuchos::ParameterList &mumps = parameters.sublist("mumps");
-        mumps.set("ICNTL(7)", mumps_ordering_code(mumps_ordering));
-        mumps.set("ICNTL(14)", workspace_percent);
+        Teuchos::ParameterList &controls = parameters.sublist("mumps");
+        controls.set("ICNTL(7)", mumps_ordering_code(mumps_ordering));
+        controls.set("ICNTL(14)", workspace_percent);
         if (mumps_ordering == "metis")
           {
-            permutation = metis_nested_dissection(E, comm);
-            mumps.set("PermIn", permutation.empty() ? static_cast<int *>(nullptr) :
+            permutation = mumps::nested_dissection(E, comm);
+            controls.set("PermIn", permutation.empty() ? static_cast<int *>(nullptr) :
                                                       permutation.data());
           }
       }
@@ -369,10 +273,10 @@ namespace fdparticle
                 ExcMessage(solver_type + ": the symbolic factorization failed."));
     // INFOG(16): the analysis' estimate of the factorization's memory on the rank that
     // needs most (MB, in core); the same on every rank.
-    if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
-        mumps != nullptr && memory_limit_mb > 0 && mumps->GetINFOG()[15] > memory_limit_mb)
+    if (auto *amesos_mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
+        amesos_mumps != nullptr && memory_limit_mb > 0 && amesos_mumps->GetINFOG()[15] > memory_limit_mb)
       throw OutOfMemory(solver_type + ": the factorization would need about " +
-                        std::to_string(mumps->GetINFOG()[15]) + " MB on one rank, more than "
+                        std::to_string(amesos_mumps->GetINFOG()[15]) + " MB on one rank, more than "
                         "'Solver/Direct solver memory' allows; " + use_iterative_solver);
     symbolic_done = true;
     ++stats.n_symbolic;
@@ -396,33 +300,31 @@ namespace fdparticle
       {
         if (solver->NumericFactorization() == 0)
           break;
-        auto *    mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
-        const int info  = mumps ? mumps->GetINFOG()[0] : 0;
+        auto *    amesos_mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
+        const int info  = amesos_mumps ? amesos_mumps->GetINFOG()[0] : 0;
         // The factors do not fit in the machine's memory: a shorter time step gives the
         // same matrix pattern and the same factors (on uniform 32³ cells of the 3D array,
         // 1.8 M unknowns, MUMPS asked for 10¹⁰ entries, and the time loop halved Δt six
         // times for nothing).
-        if (info == mumps_out_of_memory)
+        if (info == mumps::out_of_memory)
           {
             std::ostringstream asked;
-            asked << std::setprecision(2) << mumps_count(mumps->GetINFOG()[1]);
+            asked << std::setprecision(2) << mumps::count(amesos_mumps->GetINFOG()[1]);
             throw OutOfMemory(
               solver_type + " could not allocate " + asked.str() +
               " entries for the factorization (MUMPS INFOG(1) = -13, out of memory): the "
               "direct solver does not fit this problem on this machine; " +
               use_iterative_solver);
           }
-        const bool short_of_space =
-          info == -8 || info == -9 || info == -14 || info == -15 || info == -17;
-        AssertThrow(short_of_space && attempt < max_workspace_retries,
+        AssertThrow(mumps::short_of_workspace(info) && attempt < mumps::max_workspace_retries,
                     ExcMessage(solver_type + ": the numeric factorization failed" +
-                               (mumps ? " (MUMPS INFOG(1) = " + std::to_string(info) + ")" :
+                               (amesos_mumps ? " (MUMPS INFOG(1) = " + std::to_string(info) + ")" :
                                         std::string()) +
-                               (info == mumps_singular ?
+                               (info == mumps::singular ?
                                   ": the Newton matrix is singular (a particle not resolved "
                                   "by the mesh, too few cells inside it?)." :
                                   ".")));
-        workspace_percent *= workspace_growth;
+        workspace_percent *= mumps::workspace_growth;
         if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
           std::cout << "  direct solver: MUMPS ran out of working space (INFOG(1) = " << info
                     << "); analysing again with ICNTL(14) = " << workspace_percent << std::endl;
@@ -443,15 +345,15 @@ namespace fdparticle
       return;
     std::cout << "  direct solver " << solver_type << ": numeric factorization " << std::fixed
               << std::setprecision(3) << seconds << " s" << std::defaultfloat;
-    if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get()))
+    if (auto *amesos_mumps = dynamic_cast<Amesos_Mumps *>(solver.get()))
       {
-        const int *   infog  = mumps->GetINFOG();
-        const double *rinfog = mumps->GetRINFOG();
+        const int *   infog  = amesos_mumps->GetINFOG();
+        const double *rinfog = amesos_mumps->GetRINFOG();
         // INFOG(7): ordering used; RINFOG(3): flops of the elimination; INFOG(29): entries
         // in the factors; INFOG(13): delayed pivots; INFOG(19): MB allocated in total.
         std::cout << ", ordering " << mumps_ordering_name(infog[6]) << ", " << std::setprecision(3)
                   << rinfog[2] << " flops (" << rinfog[2] / seconds / 1e9 << " GFlop/s), "
-                  << mumps_count(infog[28]) << " entries in the factors, " << infog[12]
+                  << mumps::count(infog[28]) << " entries in the factors, " << infog[12]
                   << " delayed pivots, " << infog[18] << " MB";
       }
     std::cout << std::endl;

@@ -42,8 +42,7 @@ namespace fdparticle
                         "the preconditioner (doc/method.md §8).");
       prm.declare_entry("Cut cell patch layers", "1", Patterns::Integer(-1, 3),
                         "Iterative solver: after each application of the block preconditioner, "
-                        "solve exactly (UMFPACK; each particle's patch, joined with those it "
-                        "meets, by one rank) for the velocity, "
+                        "solve exactly (MUMPS, on all ranks together) for the velocity, "
                         "multiplier and pressure of the cells inside the particles, of the "
                         "nearly covered cut cells (Cut cell patch fluid fraction) and of this "
                         "many rings of cells around them; -1: no patch. With 1 the FGMRES "
@@ -52,7 +51,7 @@ namespace fdparticle
                         "to its neighbours) and the cheap form of the preconditioner converges "
                         "on 3D scenes (Cheap iterations). Its factors grow faster than its size "
                         "(mostly the shell of cells around the particle surfaces): a patch "
-                        "above Cut cell patch memory, or that UMFPACK cannot factor, is dropped "
+                        "above Cut cell patch memory, or that MUMPS cannot factor, is dropped "
                         "with a warning and the solve goes on without it (doc/scaling.md). With "
                         "many particles a few cells across (a suspension) the patch costs more "
                         "than it saves: -1 there (with 25 spheres the solve was 4 times faster "
@@ -60,11 +59,10 @@ namespace fdparticle
                         "after 45 s of trying; doc/scaling.md).");
       prm.declare_entry("Cut cell patch memory", "4", Patterns::Double(0),
                         "Iterative solver: the most memory, in GB per rank, that the "
-                        "factorization of the cut-cell patch may take, estimated from "
-                        "UMFPACK's symbolic analysis before anything is factored; a larger "
-                        "patch is dropped with a warning (one per run) and the solve goes on "
-                        "without it, with more iterations. UMFPACK cannot go past about 16 GB "
-                        "in any case. 0: no limit.");
+                        "factorization of the cut-cell patch may take on the rank that needs "
+                        "most, estimated by MUMPS's analysis before anything is factored; a "
+                        "larger patch is dropped with a warning (one per run) and the solve "
+                        "goes on without it, with more iterations. 0: no limit.");
       prm.declare_entry("Cut cell patch fluid fraction", "0.25", Patterns::Double(0, 1),
                         "Iterative solver: only cut cells whose fluid part is at most this "
                         "fraction of the cell seed the cut-cell patch (with its rings): the "

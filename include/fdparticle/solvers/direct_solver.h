@@ -5,6 +5,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <fdparticle/solvers/linear_solver.h>
+#include <fdparticle/solvers/mumps.h>
 #include <fdparticle/solvers/newton_system.h>
 
 #include <Eigen/Dense>
@@ -105,17 +106,9 @@ namespace fdparticle
     const Epetra_CrsMatrix *factored = nullptr;
     /// K = [A B; C D]; rows of A where each rank owns them, particle rows on rank 0.
     std::unique_ptr<Epetra_CrsMatrix> K;
-    /// MUMPS's ICNTL(14): extra working space in percent of its own estimate. MUMPS's
-    /// default is 20; the saddle-point block delays pivots, so we start with more margin
-    /// (doc/performance.md, working space). Raised (and kept) by workspace_growth when a
-    /// factorization runs out of space (INFOG(1) = -8, -9, -14, -15, -17).
-    int workspace_percent = initial_workspace_percent;
-    static constexpr int initial_workspace_percent = 30;
-    /// Each retry analyses again with this many times the margin, at most
-    /// max_workspace_retries times (30 % → 7680 %): a shortfall beyond that is no longer
-    /// an estimate that was short but a matrix MUMPS cannot factor.
-    static constexpr int workspace_growth      = 4;
-    static constexpr int max_workspace_retries = 3;
+    /// MUMPS's ICNTL(14), raised (and kept) when a factorization runs out of working
+    /// space (mumps::initial_workspace_percent).
+    int workspace_percent = mumps::initial_workspace_percent;
     std::unique_ptr<Epetra_MultiVector> Z;           // A⁻¹B of the current operator
     Eigen::FullPivLU<Eigen::MatrixXd>   schur_lu;    // LU of S = D − C A⁻¹ B
     std::vector<int>                    permutation; // user ordering for MUMPS (1-based)
