@@ -10,7 +10,8 @@
 # faces (doc/method.md §12); the rows measured before that, with gaps at the faces, are
 # kept in doc/suspension_3d_gaps.csv and .png. The mesh: one configuration of 25 spheres
 # at 2, 3 and 4 cells per diameter. Suspensions run without the cut-cell patch
-# (Cut cell patch layers = -1; the same U/U0, in less time: doc/scaling.md).
+# (Cut cell patch layers = -1; the same U/U0, in less time at two cells per diameter and
+# less memory at all: doc/scaling.md).
 # Each box and mesh is also run with one sphere (four random places at d/h = 2, two at 3),
 # whose exact U/U0 is the Sangani–Acrivos series for a simple cubic array
 # (doc/references/README.md): measured over exact is the discretization's factor, by

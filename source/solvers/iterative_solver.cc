@@ -53,10 +53,11 @@ namespace fdparticle
                         "(mostly the shell of cells around the particle surfaces): a patch "
                         "above Cut cell patch memory, or that MUMPS cannot factor, is dropped "
                         "with a warning and the solve goes on without it (doc/scaling.md). With "
-                        "many particles a few cells across (a suspension) the patch costs more "
-                        "than it saves: -1 there (with 25 spheres the solve was 4 times faster "
-                        "at 2 cells per diameter; at 3 and 4 the patch could not be factored, "
-                        "after 45 s of trying; doc/scaling.md).");
+                        "many particles a few cells across (a suspension) the patch trades "
+                        "memory for time: with 25 spheres the step took 1.4 times as long with "
+                        "it at 2 cells per diameter, and was 1.4 and 1.2 times faster at 3 and "
+                        "4, each time with about 3 times the memory (above the default Cut "
+                        "cell patch memory at 4; doc/scaling.md): -1 where memory is short.");
       prm.declare_entry("Cut cell patch memory", "4", Patterns::Double(0),
                         "Iterative solver: the most memory, in GB per rank, that the "
                         "factorization of the cut-cell patch may take on the rank that needs "
