@@ -55,7 +55,6 @@ namespace fdparticle
     apply_seconds = patch_apply_seconds = 0;
     times = ApplicationTimes();
     n_patch      = 0;
-    max_patch_memory = 0;
     velocity_amg.clear();
     multiplier_amg.clear();
     pressure_amg.clear();
@@ -171,7 +170,6 @@ namespace fdparticle
         patch_failure_reported = true;
       }
     n_patch      = Utilities::MPI::sum<types::global_dof_index>(patch.size(), comm);
-    max_patch_memory = Utilities::MPI::max(patch.memory(), comm);
     patch_active = n_patch > 0;
     patch_seconds = patch_timer.wall_time();
     setup_seconds = setup_timer.wall_time();

@@ -53,7 +53,6 @@ namespace fdparticle
     columns.reset();
     dofs.clear();
     component.clear();
-    ordering.clear();
     factor_memory = 0;
   }
 
@@ -286,7 +285,8 @@ namespace fdparticle
   {
     problem = std::make_unique<Epetra_LinearProblem>(matrix.get(), correction.get(),
                                                      residual.get());
-    ordering                   = mumps::nested_dissection(*matrix, comm);
+    // MUMPS reads the ordering during its analysis only.
+    std::vector<int> ordering  = mumps::nested_dissection(*matrix, comm);
     const unsigned long long n = matrix->NumGlobalRows64();
     auto why = [&](const std::string &reason) {
       clear();

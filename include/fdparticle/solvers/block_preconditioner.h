@@ -90,7 +90,7 @@ namespace fdparticle
     /// Unknowns in the cut-cell patch, over all ranks.
     types::global_dof_index patch_size() const { return n_patch; }
     /// Peak memory of the patch's factorization in bytes, the largest over the ranks.
-    double patch_memory() const { return max_patch_memory; }
+    double patch_memory() const { return patch.memory(); }
     /// Wall time of the last initialize() and of the patch's part of it (rank 0's, s).
     double setup_time() const { return setup_seconds; }
     double patch_setup_time() const { return patch_seconds; }
@@ -204,7 +204,6 @@ namespace fdparticle
     /// Whether a patch that could not be factored was reported (once per run).
     bool patch_failure_reported = false;
     types::global_dof_index n_patch      = 0;
-    double                  max_patch_memory = 0;
     double                  setup_seconds = 0, patch_seconds = 0;
     mutable double          apply_seconds = 0, patch_apply_seconds = 0;
     mutable ApplicationTimes times;

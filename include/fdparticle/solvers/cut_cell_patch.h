@@ -118,7 +118,6 @@ namespace fdparticle
     std::unique_ptr<Epetra_Vector>        residual, correction;
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    solver;
-    std::vector<int>                      ordering;
     double                                factor_memory = 0;
   };
 } // namespace fdparticle
