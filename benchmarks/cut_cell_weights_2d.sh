@@ -22,7 +22,6 @@ work="${WORK:-$top/benchmarks/work/cut_cell_weights_2d}"
 ranks="${RANKS:-2}"
 source "$top/benchmarks/settling_disks_scene.sh"
 mkdir -p "$work"
-export OMPI_MCA_mpi_yield_when_idle=1
 csv="$top/doc/cut_cell_weights_2d.csv"
 echo "scene,cut_cell_cost,ranks,min_cells,max_cells,seconds_per_step,assembly_seconds_per_step,repartitions" > "$csv"
 
@@ -76,7 +75,7 @@ for scene in settling carried; do
     { "$scene" "$cost"
       printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$work/$run"
     } > "$work/$run.prm"
-    mpirun --oversubscribe -np "$ranks" "$exe" "$work/$run.prm" > "$work/$run.log"
+    bash "$top/scripts/mpirun.sh" "$ranks" "$exe" "$work/$run.prm" > "$work/$run.log"
     /usr/bin/python3 - "$work" "$run" "$scene" "$cost" "$ranks" >> "$csv" <<'PY'
 import csv, re, sys
 work, run, scene, cost, ranks = sys.argv[1:6]

@@ -41,7 +41,7 @@ fi
 if [ "${PLOT_ONLY:-0}" != 1 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   /usr/bin/time -f "%e s, %M kB peak (rank 0)" -o "$work/run.time" \
-    mpirun --oversubscribe -np "$np" "$exe" "$work/run.prm" > "$work/run.log" 2>&1 ||
+    bash "$top/scripts/mpirun.sh" "$np" "$exe" "$work/run.prm" > "$work/run.log" 2>&1 ||
     echo "the run stopped: $(grep -m1 -i 'error' "$work/run.log")"
   echo "$np rank(s): $(cat "$work/run.time")"
 fi

@@ -28,7 +28,9 @@ Failing mutants are copied to WORK/failures/ with the command and what went wron
 
 Runs are kept short: End time is cut to --steps steps (of the scene's Time step and of the
 default one, for mutants that delete it), Newton to 8 iterations and recovery to 2
-halvings; a run on N ranks gets N times --timeout. Each process may map --memory GiB.
+halvings; a run on N ranks gets N times the larger of --timeout and 20 times its unchanged
+scene's run (timed at the start, so a busy machine gives more time). Each process may map
+--memory GiB.
 
     benchmarks/fuzz_parameters.py --seed 1 --count 200
     benchmarks/fuzz_parameters.py --duration 2400 --count 0       # as many as fit in 40 min
@@ -47,6 +49,10 @@ import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TESTS = os.path.join(TOP, "tests")
+MPIRUN = os.path.join(TOP, "scripts", "mpirun.sh")
+# A mutant's run is a hang when it takes more than this many times its unchanged scene's
+# run (and more than --timeout).
+HANG_FACTOR = 20
 SCENE_GLOBS = ("prm/*.prm", "prm/validation/*.prm", "tests/*.prm")
 
 # The output directory set in every base scene, relative to the mutant's own directory, so
@@ -670,13 +676,14 @@ def limit_memory(limit_bytes):
     return apply
 
 
-def run(opts, prm, cwd, ranks):
-    """(rc, stdout, stderr, timed_out, seconds)."""
+def run(opts, prm, cwd, ranks, timeout=None):
+    """(rc, stdout, stderr, timed_out, seconds); timeout: seconds per rank (default
+    --timeout)."""
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_mpi_yield_when_idle="1", DEAL_II_NUM_THREADS="1", OMP_NUM_THREADS="1")
+               DEAL_II_NUM_THREADS="1", OMP_NUM_THREADS="1")
     cmd = [opts.executable, prm]
     if ranks > 1:
-        cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
+        cmd = ["bash", MPIRUN, str(ranks)] + cmd
     start = time.time()
     # A process group of its own: on a time-out the whole tree (mpirun and its ranks) is ended.
     proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -684,7 +691,7 @@ def run(opts, prm, cwd, ranks):
                             start_new_session=True)
     try:
         # Oversubscribed ranks share the cores: a parallel run gets the time of each rank.
-        out, err = proc.communicate(timeout=opts.timeout * ranks)
+        out, err = proc.communicate(timeout=(timeout or opts.timeout) * ranks)
         timed_out = False
     except subprocess.TimeoutExpired:
         os.killpg(proc.pid, signal.SIGKILL)
@@ -722,7 +729,7 @@ def save_failure(opts, label, text, ranks, reason, stderr):
     with open(base + ".prm", "wb") as f:
         f.write(text.encode("utf-8", errors="surrogateescape"))
     with open(base + ".txt", "w") as f:
-        runner = f"mpirun --oversubscribe -np {ranks} " if ranks > 1 else ""
+        runner = f"bash scripts/mpirun.sh {ranks} " if ranks > 1 else ""
         f.write(f"{reason}\n\nreproduce in this directory (replace @TESTS@ by the tests/ "
                 f"directory):\n  {runner}fdparticle {label}.prm\n\nstderr:\n{stderr[-3000:]}\n")
 
@@ -760,12 +767,13 @@ def main():
     ctx = {"declared": declared, "defaults": {(p, n): v for p, n, v in declared}}
 
     # Baselines: each scene shortened but unchanged must pass too; slow ones are left out.
-    scenes, failed = {}, 0
+    scenes, base_seconds, failed = {}, {}, 0
     for name, lines in shipped_scenes(opts.scenes).items():
         scene = capped(lines, opts.steps, ctx["defaults"])
         directory = os.path.join(opts.work, "base", name.replace("/", "_"))
         prm = prepare(opts, name, scene.text(), directory)
-        rc, out, err, timed_out, seconds = run(opts, prm, directory, 1)
+        rc, out, err, timed_out, seconds = run(opts, prm, directory, 1,
+                                               max(opts.timeout, opts.max_base_seconds))
         ok, reason = classify(rc, out, err, output_directory(scene.text(), directory), timed_out)
         if not ok and not timed_out:  # a slow scene is left out below, not a failure
             failed += 1
@@ -773,6 +781,7 @@ def main():
             save_failure(opts, "base-" + name.replace("/", "_")[:-4], scene.text(), 1, reason, err)
         if seconds <= opts.max_base_seconds and not timed_out:
             scenes[name] = scene.lines
+            base_seconds[name] = seconds
         else:
             print(f"left out {name}: its shortened run took {seconds:.0f} s", flush=True)
         if not opts.keep:
@@ -795,7 +804,10 @@ def main():
         text = f"# fuzz mutant {i} of {name} (seed {opts.seed}): {description}\n" + scene.text()
         directory = os.path.join(opts.work, f"mutant-{i:05d}")
         prm = prepare(opts, name, text, directory)
-        rc, out, err, timed_out, seconds = run(opts, prm, directory, ranks)
+        # A hang is a run far slower than its unchanged scene was just now: on a busy machine
+        # both are slow, so the limit grows with the base run's time.
+        timeout = max(opts.timeout, HANG_FACTOR * base_seconds[name])
+        rc, out, err, timed_out, seconds = run(opts, prm, directory, ranks, timeout)
         ok, reason = classify(rc, out, err, output_directory(text, directory), timed_out)
         if not os.path.isfile(prm):
             ok, reason = False, "the run replaced or deleted its own parameter file"

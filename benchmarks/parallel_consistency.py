@@ -18,9 +18,10 @@ beyond 1). A scene fails when
   - particles.csv or statistics.csv holds a NaN or inf;
   - the step times, cells or DoFs in statistics.csv differ between rank counts;
   - a number in particles.csv differs from the first rank count's by more than
-    REL_TOL * max(|a|, |b|, FLOOR_FRACTION * scale), scale the largest value of that kind
-    of column in the scene (positions: the box size; angular velocities and torques also
-    measured against what the translation makes of them on the smallest ball).
+    REL_TOL * max(|a|, |b|) + FLOOR * scale, scale the largest value of that kind of
+    column in the scene (tests/testlib.py: positions against the box size; angular
+    velocities and torques also against what the translation makes of them on the
+    smallest ball).
 
 Adaptive meshes repartition the cells at every adaptation, so scenes with Particle
 refinement levels >= 1 and a few dozen steps exercise the layouts that change between
@@ -46,15 +47,15 @@ import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(TOP, "tests"))
-from testlib import prm_entries  # noqa: E402  (after the path it lives on)
+from testlib import FLOOR, allowed_difference, column_scales, prm_entries  # noqa: E402  (after the path it lives on)
 
 REL_TOL = 1e-8
-# Values below this fraction of the largest of their kind are compared against that
-# fraction instead of themselves. The rank counts solve with other orderings, so their
-# solutions differ by the solver's residual (up to the Nonlinear tolerance), in proportion
-# to the whole solution: a slow rotation next to a fast translation differed by 1e-8 of
-# itself but 1e-10 of v/R (KLU on 1 and 2 ranks, Newton residuals 1e-11 and 5e-13).
-FLOOR_FRACTION = 0.1
+# Values far below the largest of their kind are compared against testlib.FLOOR of that
+# (tests/README.md). The rank counts solve with other orderings, so their solutions differ
+# by the solver's residual (up to the Nonlinear tolerance), in proportion to the whole
+# solution: a slow rotation next to a fast translation differed by 1e-8 of itself but
+# 1e-10 of v/R (KLU on 1 and 2 ranks, Newton residuals 1e-11 and 5e-13).
+FLOOR_FRACTION = FLOOR / REL_TOL
 TIME_REL_TOL = 1e-12
 IGNORED_COLUMNS = {"wall_seconds"}
 # statistics.csv columns that depend on the mesh and the step sequence only.
@@ -424,12 +425,12 @@ def watch(process, log, started, timeout, stall):
 def run_fdparticle(executable, prm, ranks, cwd, timeout, stall):
     """(status, message, seconds): status 'ok', 'error' (a clean fdparticle error), 'crash'
     or 'hang'. The run's output goes to CWD/ranks-N.log."""
-    # Idle ranks yield the core: the rank counts are oversubscribed on small machines.
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_mpi_yield_when_idle="1")
+    # Several ranks through scripts/mpirun.sh: the rank counts are oversubscribed on small
+    # machines, so the ranks are not pinned to cores and idle ranks yield theirs.
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     cmd = [executable, prm]
     if ranks > 1:
-        cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
+        cmd = ["bash", os.path.join(TOP, "scripts", "mpirun.sh"), str(ranks)] + cmd
     log = os.path.join(cwd, f"ranks-{ranks}.log")
     started = time.time()
     with open(log, "w") as out, open(log + ".stderr", "w+") as err:
@@ -505,16 +506,6 @@ def non_finite(path):
     return found
 
 
-def family(name):
-    """Kind of a particles.csv column: 'position' for x, y, z; 'v' for vx, 'contact_f'
-    for contact_fx, ...; the name itself otherwise."""
-    if name in AXES:
-        return "position"
-    if len(name) >= 2 and name[-1] in AXES:
-        return name[:-1]
-    return name
-
-
 def step_numbers(out_dir):
     """{time: step} from OUT_DIR/statistics.csv, with step 0 at t = 0."""
     header, rows = read_table(os.path.join(out_dir, "statistics.csv"))
@@ -538,18 +529,7 @@ def compare_particles(ref_dir, other_dir, box, radius):
     problems = []
     rows, rows_o = rows[:len(rows_o)], rows_o[:len(rows)]
     columns = [(i, h) for i, h in enumerate(header) if h not in IGNORED_COLUMNS]
-    scale = {}
-    for i, h in columns:
-        for row in rows + rows_o:
-            value = abs(number(row[i]))
-            if math.isfinite(value):
-                scale[family(h)] = max(scale.get(family(h), 0.0), value)
-    scale["position"] = box
-    # Rotation and moments against what the translation makes of them on the smallest
-    # ball (radius): w ~ |V|/R, torque ~ |F| R; the wall force against the hydrodynamic one.
-    scale["w"] = max(scale.get("w", 0.0), scale.get("v", 0.0) / radius)
-    scale["t"] = max(scale.get("t", 0.0), scale.get("f", 0.0) * radius)
-    scale["contact_f"] = max(scale.get("contact_f", 0.0), scale.get("f", 0.0))
+    scale = column_scales(header, [rows, rows_o], box, radius)
     worst, where = 0.0, ""
     steps = step_numbers(ref_dir)
     for row, row_o in zip(rows, rows_o):
@@ -560,8 +540,9 @@ def compare_particles(ref_dir, other_dir, box, radius):
         for i, h in columns:
             a, b = number(row[i]), number(row_o[i])
             tol = TIME_REL_TOL if h in ("time", "id") else REL_TOL
-            reference = max(abs(a), abs(b), FLOOR_FRACTION * scale.get(family(h), 0.0))
-            diff = abs(a - b) / reference if reference > 0 else 0.0
+            # The difference in units of REL_TOL's allowance (testlib's rule).
+            allowed = allowed_difference(a, b, 1.0, FLOOR_FRACTION, scale[h])
+            diff = abs(a - b) / allowed if allowed > 0 else 0.0
             if h not in ("time", "id") and diff > worst:
                 worst, where = diff, f"column {h}, {place}"
             if not diff <= tol:

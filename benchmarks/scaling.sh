@@ -23,7 +23,6 @@ ranks="${RANKS:-1}"
 solvers="${SOLVERS:-direct iterative iterative-inner}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
-export OMPI_MCA_mpi_yield_when_idle=1
 
 . "$top/benchmarks/scaling_scenes.sh"
 
@@ -43,7 +42,7 @@ for name in sediment array; do
         printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$d/out"
       } > "$d/scene.prm"
       cmd=("$exe" "$d/scene.prm")
-      [ "$ranks" -gt 1 ] && cmd=(mpirun --oversubscribe -np "$ranks" "${cmd[@]}")
+      [ "$ranks" -gt 1 ] && cmd=(bash "$top/scripts/mpirun.sh" "$ranks" "${cmd[@]}")
       if ! /usr/bin/time -f "%e %M" -o "$d/time" "${cmd[@]}" > "$d/log" 2>&1; then
         echo "$name $n $solver failed (see $d/log)"
         continue

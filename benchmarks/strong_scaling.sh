@@ -16,7 +16,6 @@ work="${WORK:-$top/benchmarks/work/strong_scaling}"
 sizes="${SIZES:-12 16 21 24}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
-export OMPI_MCA_mpi_yield_when_idle=1
 . "$top/benchmarks/scaling_scenes.sh"
 
 csv="$top/doc/strong_scaling.csv"
@@ -32,7 +31,7 @@ for n in $sizes; do
       printf 'subsection Output\n  set Directory = %s\n  set VTU interval = 0\nend\n' "$d/out"
     } > "$d/scene.prm"
     if ! /usr/bin/time -f "%e %M" -o "$d/time" \
-         mpirun --oversubscribe -np "$ranks" "$exe" "$d/scene.prm" > "$d/log" 2>&1; then
+         bash "$top/scripts/mpirun.sh" "$ranks" "$exe" "$d/scene.prm" > "$d/log" 2>&1; then
       echo "sediment $n on $ranks ranks failed (see $d/log)"
       continue
     fi

@@ -35,7 +35,7 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
 end
 " > "$d.prm"
       if ! /usr/bin/time -f "%e %M" -o "$d.time" \
-           mpirun --oversubscribe -np "$ranks" "$exe" "$d.prm" > "$d.log" 2>&1; then
+           bash "$top/scripts/mpirun.sh" "$ranks" "$exe" "$d.prm" > "$d.log" 2>&1; then
         echo "pair $pair on $ranks ranks failed (see $d.log)"
         continue
       fi

@@ -64,7 +64,7 @@ end
     "$gap" > "$work/$name.prm"
   echo "$np" > "$work/$name.ranks"
   /usr/bin/time -f "%M" -o "$work/$name.mem" \
-    mpirun --oversubscribe -np "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
+    bash "$top/scripts/mpirun.sh" "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
     { echo "$name stopped: $(grep -m1 -i 'error' "$work/$name.log")"; continue; }
   echo "$name: $(tail -1 "$work/$name/statistics.csv" | cut -d, -f5,7,10) (unknowns, FGMRES, s)"
 done

@@ -61,7 +61,7 @@ if [ "$(tail -n +2 "$work/$name/statistics.csv" 2>/dev/null | wc -l)" -lt "$step
   suspension_prm "$n" "$box" "$cells" "$seed" "$solver" "$dt" $(( steps * dt )) BDF2 \
     "$work/$name" "$sections" > "$work/$name.prm"
   /usr/bin/time -f "%M" -o "$work/$name.mem" \
-    mpirun --oversubscribe -np "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1
+    bash "$top/scripts/mpirun.sh" "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1
 fi
 /usr/bin/python3 "$top/benchmarks/suspension_time_3d.py" "$work/$name" "$box" \
   "$top/doc/$csv_name.csv"

@@ -16,7 +16,7 @@ for ranks in 1 2; do
       -e "s|^ *set Directory .*|  set Directory = $work/np$ranks|" \
       -e 's/^ *set VTU interval .*/  set VTU interval = 0/' "$top/prm/sediment.prm" > "$work/np$ranks.prm"
   if [ "$ranks" = 1 ]; then "$exe" "$work/np1.prm" > /dev/null
-  else mpirun --oversubscribe -np "$ranks" "$exe" "$work/np$ranks.prm" > /dev/null; fi
+  else bash "$top/scripts/mpirun.sh" "$ranks" "$exe" "$work/np$ranks.prm" > /dev/null; fi
   awk -F, -v r="$ranks" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
     { print r","$c["step"]","$c["nonlinear_iterations"]","$c["dofs"]","$c["wall_seconds"] }' \
     "$work/np$ranks/statistics.csv" >> "$out"

@@ -8,8 +8,6 @@ if [ "${1:-}" = "-np" ]; then ranks="$2"; shift 2; fi
 bash "$top/scripts/install-dependencies.sh"
 bash "$top/scripts/build.sh"
 if [ "$ranks" -gt 1 ]; then
-  # Open MPI refuses root without these; more ranks than cores need --oversubscribe.
-  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-  exec mpirun --oversubscribe -np "$ranks" "$top/build/fdparticle" "$@"
+  exec bash "$top/scripts/mpirun.sh" "$ranks" "$top/build/fdparticle" "$@"
 fi
 exec "$top/build/fdparticle" "$@"

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """Run one fdparticle regression/validation test, ASPECT style.
 
-A test is tests/NAME.prm; directives in its comment lines say what to check:
+A test is tests/NAME.prm; directives in its comment lines say what to check. Two runs are
+compared number by number by one rule (testlib.allowed_difference, tests/README.md):
+|a - b| <= REL * max(|a|, |b|) + FLOOR * S, S the largest magnitude of the column's kind
+over both runs (positions: the box size); FLOOR defaults to 1e-9.
 
   # test-ranks: 1, 2               run on each number of MPI ranks (default 1); with several,
-                                   particles.csv must agree between them (relative tolerance
-  # test-rank-tolerance: 1e-8      given here, default 1e-8; a second number replaces the
-                                   absolute floor for values near zero, default 1e-12)
+                                   particles.csv must agree between them
+  # test-rank-tolerance: REL [FLOOR]  (default 1e-8)
   # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
                                    in one 'fdparticle: error' line, end every rank without
                                    aborting MPI, and leave no output directory behind
@@ -14,11 +16,11 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
   # test-args: ARGS                run 'fdparticle ARGS' instead of 'fdparticle NAME.prm'
                                    (@TESTS@ in ARGS and in the prm: the tests/ directory)
   # test-compare: FILE [FILE ...]  compare output files with tests/NAME/FILE (CSV, numeric,
-  # test-tolerance: REL ABS        |a-b| <= ABS + REL*|b|; wall_seconds is never compared)
-  # test-solvers: REL ABS [N]      also run the scene with the other Solver/Linear solver
+  # test-tolerance: REL [FLOOR]    default 1e-6 1e-10; wall_seconds is never compared)
+  # test-solvers: REL FLOOR [N]    also run the scene with the other Solver/Linear solver
                                    (iterative for a direct scene, direct for an iterative
                                    one), on each number of ranks (or on N ranks only):
-                                   particles.csv must agree, |a-b| <= ABS + REL*|b|
+                                   particles.csv must agree
   # test-check: SCRIPT [ARGS]      run tests/SCRIPT OUTPUT_DIR [ARGS]; it exits non-zero on failure
   # test-expect-output: N TEXT     the run on N ranks must print TEXT on stdout or stderr
                                    (an event that the scene is built to cause, e.g. a
@@ -29,7 +31,7 @@ A test is tests/NAME.prm; directives in its comment lines say what to check:
                                    write (only checkpoint.old and a partial checkpoint.new
                                    left); particles.csv and the step rows of
                                    statistics.csv must equal those of the uninterrupted
-  # test-restart-tolerance: REL ABS  run (default 1e-12 1e-14)
+  # test-restart-tolerance: REL FLOOR  run (default 1e-12 1e-14)
   # test-mirror: AXIS[, AXIS]      also run the scene mirrored across the mid-plane of the
   # test-mirror-tolerance: TOL     box normal to AXIS (x, y or z: particle positions,
                                    Gravity, Body force, wall velocities and prescribed
@@ -83,11 +85,12 @@ def read_csv(path):
     return rows[0], rows[1:]
 
 
-def compare_csv(actual, expected, rel, abs_tol):
-    """Return a list of mismatch descriptions (empty: files agree)."""
+def compare_csv(actual, expected, rel, floor, box=None):
+    """Mismatches (empty: the files agree) of two CSV files, value by value, by the rule of
+    testlib: |a - b| <= rel * max(|a|, |b|) + floor * S, S the scale of the column's kind
+    over both files (positions: box, when given)."""
     ha, ra = read_csv(actual)
     he, re_ = read_csv(expected)
-    problems = []
     # Columns added to a table later do not break stored output; missing ones do.
     missing = [h for h in he if h not in ha]
     if missing:
@@ -96,24 +99,43 @@ def compare_csv(actual, expected, rel, abs_tol):
     ha = he
     if len(ra) != len(re_):
         return [f"{os.path.basename(actual)}: {len(ra)} rows, expected {len(re_)}"]
+    radii = [float(row[ha.index("radius")]) for row in ra + re_] if "radius" in ha else []
+    scales = testlib.column_scales(ha, [ra, re_], box, min(radii, default=None))
+    problems = []
     for i, (a_row, e_row) in enumerate(zip(ra, re_)):
-        for name, a, e in zip(ha, a_row, e_row):
+        for name, a_text, e_text in zip(ha, a_row, e_row):
             if name in IGNORED_COLUMNS:
                 continue
-            a, e = float(a), float(e)
-            if not abs(a - e) <= abs_tol + rel * abs(e):
+            a, e = float(a_text), float(e_text)
+            allowed = max(testlib.allowed_difference(a, e, rel, floor, scales[name]),
+                          testlib.printed_unit(a_text), testlib.printed_unit(e_text))
+            if not abs(a - e) <= allowed * (1 + 1e-9):
                 problems.append(f"{os.path.basename(actual)} row {i + 1} column {name}: "
-                                f"{a!r} vs expected {e!r}")
+                                f"{a!r} vs expected {e!r} (scale {scales[name]:.3g})")
     return problems
 
 
+def tolerances(text, default):
+    """(REL, FLOOR) of a tolerance directive's value; FLOOR defaults to testlib.FLOOR."""
+    values = [float(x) for x in (text or default).split()[:2]]
+    return values[0], values[1] if len(values) > 1 else testlib.FLOOR
+
+
+def run_box(out_dir):
+    """The box size of the run written to out_dir (its parameters.prm)."""
+    return testlib.box_size(testlib.parameters(out_dir))
+
+
+MPIRUN = os.path.join(os.path.dirname(HERE), "scripts", "mpirun.sh")
+
+
 def run(executable, args, ranks, cwd):
-    # Idle ranks yield the core: ctest runs other tests beside an oversubscribed MPI run.
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_mpi_yield_when_idle="1")
+    # Several ranks through scripts/mpirun.sh: not pinned to cores, idle ranks yield their
+    # core (ctest runs other tests beside an MPI run).
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     cmd = [executable] + args
     if ranks > 1:
-        cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
+        cmd = ["bash", MPIRUN, str(ranks)] + cmd
     print("running:", " ".join(cmd), flush=True)
     return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
 
@@ -221,24 +243,13 @@ def compare_transformed(first_dir, other_dir, label, expected_value, box_size, r
         if fname == "statistics.csv":
             kinds = {h: k for h, k in kinds.items()
                      if k and k[0] in ("mean_v", "mean_particle_v")}
-        # Scale of each kind of column, over both runs.
-        scale = {}
-        for i, h in enumerate(header):
-            if h in kinds and kinds[h]:
-                family = kinds[h][0]
-                for row in rows + rows_m:
-                    scale[family] = max(scale.get(family, 0.0), abs(float(row[i])))
-        scale["position"] = max(box_size)
-        # Rotation and moments are measured against what the translation makes of them
-        # on the smallest particle (radius): ω ~ |V|/R, torque ~ |F| R.
+        scale = testlib.column_scales(header, [rows, rows_m], max(box_size),
+                                      radius if fname == "particles.csv" else None)
         if fname == "particles.csv":
-            scale["w"] = max(scale.get("w", 0.0), scale.get("v", 0.0) / radius)
-            scale["t"] = max(scale.get("t", 0.0), scale.get("f", 0.0) * radius)
-            scale["contact_f"] = max(scale.get("contact_f", 0.0), scale.get("f", 0.0))
-            velocity_scale = scale.get("v", 0.0)
+            velocity_scale = scale.get("vx", 0.0)
         else:
-            scale["mean_v"] = max(scale.get("mean_v", 0.0), velocity_scale)
-            scale["mean_particle_v"] = velocity_scale
+            # The box's mean velocity (nearly zero in a closed box) against the particles'.
+            scale = {h: max(s, velocity_scale) for h, s in scale.items()}
         for i, h in enumerate(header):
             if not kinds.get(h):
                 continue
@@ -250,9 +261,9 @@ def compare_transformed(first_dir, other_dir, label, expected_value, box_size, r
                 error = x - expected
                 if period:
                     error -= period * round(error / period)
-                if abs(error) > tol * max(scale[family], 1e-300):
+                if abs(error) > tol * max(scale[h], 1e-300):
                     problems.append(f"{label}: {fname} row {r + 1} column {h}: {x!r} vs "
-                                    f"{expected!r} from the {label} run (scale {scale[family]:.3g})")
+                                    f"{expected!r} from the {label} run (scale {scale[h]:.3g})")
     return problems
 
 
@@ -330,9 +341,9 @@ def check_restart(opts, text, d, ranks, full_dir):
         sys.stderr.write(result.stderr[-2000:])
         if result.returncode != 0:
             return [f"restart test, {stage} run exited with {result.returncode}"]
-    rel, abs_tol = (float(x) for x in d.get("test-restart-tolerance", "1e-12 1e-14").split())
+    rel, floor = tolerances(d.get("test-restart-tolerance"), "1e-12 1e-14")
     for p in compare_csv(os.path.join(part_dir, "particles.csv"),
-                         os.path.join(full_dir, "particles.csv"), rel, abs_tol):
+                         os.path.join(full_dir, "particles.csv"), rel, floor, run_box(full_dir)):
         problems.append(f"restarted vs uninterrupted: {p}")
     steps = [read_csv(os.path.join(x, "statistics.csv"))[1] for x in (part_dir, full_dir)]
     if [r[0] for r in steps[0]] != [r[0] for r in steps[1]]:
@@ -363,10 +374,11 @@ def check_other_solver(opts, text, d, name, ranks, first_dir):
                               name, ranks, other)
     if code != 0:
         return [f"the run with the {other} solver exited with {code}"]
-    rel, abs_tol = (float(x) for x in d["test-solvers"].split()[:2])
+    rel, floor = tolerances(d["test-solvers"], None)
     return [f"{other} solver: {p}" for p in
             compare_csv(os.path.join(o_dir, "particles.csv"),
-                        os.path.join(first_dir, "particles.csv"), rel, abs_tol) +
+                        os.path.join(first_dir, "particles.csv"), rel, floor,
+                        run_box(first_dir)) +
             check_setups(o_dir)]
 
 
@@ -424,7 +436,7 @@ def main():
                 failures.append(f"the output on {ranks} rank(s) does not contain {expected!r}")
 
         if "test-compare" in d:
-            rel, abs_tol = (float(x) for x in d.get("test-tolerance", "1e-6 1e-10").split())
+            rel, floor = tolerances(d.get("test-tolerance"), "1e-6 1e-10")
             for fname in d["test-compare"].split():
                 expected = os.path.join(HERE, name, fname)
                 actual = os.path.join(out_dir, fname)
@@ -434,7 +446,7 @@ def main():
                 if not os.path.exists(expected):
                     failures.append(f"no stored {expected}; to create it: cp {actual} {expected}")
                     continue
-                failures += compare_csv(actual, expected, rel, abs_tol)
+                failures += compare_csv(actual, expected, rel, floor, run_box(out_dir))
         if "test-restart-at" in d:
             failures += check_restart(opts, text, d, ranks, out_dir)
         if "test-mirror" in d:
@@ -470,12 +482,11 @@ def main():
                 failures.append(f"check {d['test-check']} failed")  # noqa
 
     if len(outputs) > 1:
-        tol, *floor = (float(t) for t in d.get("test-rank-tolerance", "1e-8").split())
+        rel, floor = tolerances(d.get("test-rank-tolerance"), "1e-8")
         base = os.path.join(outputs[0], "particles.csv")
         for other in outputs[1:]:
-            # Relative agreement; the absolute floor only absorbs round-off around zero.
-            for p in compare_csv(os.path.join(other, "particles.csv"), base, tol,
-                                 floor[0] if floor else 1e-12):
+            for p in compare_csv(os.path.join(other, "particles.csv"), base, rel, floor,
+                                 run_box(outputs[0])):
                 failures.append(f"{os.path.basename(other)} vs {os.path.basename(outputs[0])}: {p}")
 
     for f in failures[:30]:

@@ -46,3 +46,87 @@ def parameters(out_dir):
     {'Subsection/Name': value}."""
     with open(f"{out_dir}/parameters.prm") as f:
         return prm_entries(f.read())
+
+
+# ------------------------------------------------------------------ comparing two runs
+# How two runs of a scene are compared, number by number (ranks, restart, solvers, mirror,
+# shift, stored output; tests/README.md states the rule): a value may differ by
+#     |a - b| <= REL * max(|a|, |b|) + FLOOR * S   (or one unit of its last written digit),
+# S the scale of its column over both runs. Round-off moves with the order of operations,
+# which changes with the partition and, on several ranks, with the parallel factorization's
+# dynamic scheduling; it is a fraction of the largest value of a kind, so a component that
+# is zero by symmetry is compared against its kind's scale, not against an absolute number.
+AXES = "xyz"
+# FLOOR when a test does not set it: about a hundred times the round-off that moves with
+# the partition and with the timing of MUMPS's scheduling (up to 7e-12 of a column's
+# scale in bounce_2d), and small enough that a relative error of 1e-6 in a column that is
+# not near zero still fails.
+FLOOR = 1e-9
+# Columns that share a scale: the components of a vector; positions share the box size.
+VECTOR_FAMILIES = ("v", "f", "contact_f", "mean_v", "mean_particle_v", "w", "t")
+
+
+def column_family(name):
+    """The kind of a column: 'position' for x, y, z; 'v' for vx, 'contact_f' for
+    contact_fy, ...; the name itself for a scalar column."""
+    if name in AXES:
+        return "position"
+    if len(name) >= 2 and name[-1] in AXES and name[:-1] in VECTOR_FAMILIES:
+        return name[:-1]
+    return name
+
+
+def column_scales(header, runs, box=None, radius=None):
+    """{column: S} for rows of floats (or numeric strings) of one or more runs with the same
+    header: S is the largest magnitude of the column's kind over all runs; positions are
+    measured against the box size (box), and, given the smallest particle radius, angular
+    velocities and torques also against what the translation makes of them (|v|/R, |f| R)
+    and contact forces against the hydrodynamic force."""
+    family = {h: column_family(h) for h in header}
+    scale = {}
+    for rows in runs:
+        for row in rows:
+            for h, value in zip(header, row):
+                try:
+                    value = abs(float(value))
+                except ValueError:
+                    continue
+                if value == value and value != float("inf"):
+                    scale[family[h]] = max(scale.get(family[h], 0.0), value)
+    if box is not None:
+        scale["position"] = box
+    if radius:
+        scale["w"] = max(scale.get("w", 0.0), scale.get("v", 0.0) / radius)
+        scale["t"] = max(scale.get("t", 0.0), scale.get("f", 0.0) * radius)
+    scale["contact_f"] = max(scale.get("contact_f", 0.0), scale.get("f", 0.0))
+    return {h: scale.get(family[h], 0.0) for h in header}
+
+
+def allowed_difference(a, b, rel, floor, scale):
+    """The largest |a - b| two runs may differ by (the rule above)."""
+    return rel * max(abs(a), abs(b)) + floor * scale
+
+
+def printed_unit(text):
+    """One unit in the last digit of a number as written ('-0.0051174' -> 1e-7,
+    '2.98e-07' -> 1e-9; 0 for an integer): the CSV files hold 12 significant digits, so
+    two values that differ by round-off may be written one unit apart, whatever the
+    tolerance."""
+    mantissa, e, exponent = text.strip().lower().partition("e")
+    if not e and "." not in mantissa:
+        return 0.0  # an integer (a count, an index, an exact zero) is exact
+    decimals = len(mantissa.partition(".")[2])
+    try:
+        return 10.0 ** (int(exponent or 0) - decimals)
+    except ValueError:
+        return 0.0
+
+
+def box_size(entries):
+    """The largest edge of the box of a prm's entries (testlib.prm_entries), or None."""
+    try:
+        lower = [float(v) for v in entries["Geometry/Lower corner"].split(",")]
+        upper = [float(v) for v in entries["Geometry/Upper corner"].split(",")]
+    except KeyError:
+        return None
+    return max(u - l for l, u in zip(lower, upper))
