@@ -379,16 +379,19 @@ def main():
 
 HEADER = """# Validation against published results
 
-Written by `benchmarks/validation/run.py` (regenerate: `/usr/bin/python3
-benchmarks/validation/run.py`, ~25 min on 2 cores; ten Cate: add `--tencate E1,E2,E3,E4`). Each
-section below is regenerated separately (`--only NAME`); the discussion at the end is
-doc/validation/discussion.md. References, their definitions and citations:
-doc/references/README.md. Errors are (ours − reference)/reference. d/h is the particle
-diameter over the cell size at its surface. Wall time is the solver's own (statistics.csv),
-on a shared 2-core machine with another run beside it. How forces and torques come from λ:
-doc/method.md §9 (the force on a particle is what its multiplier applies to the fluid,
-plus the fictitious fluid's inertia and buoyancy; at steady state with a fixed particle
-it equals −κ∫λ, κ the pairing weight of doc/method.md §3, which the periodic arrays check against the exact balance F = f·|cell|).
+How close fdparticle comes to published drag, rotation and settling numbers, and at what
+cost.
+
+`/usr/bin/python3 benchmarks/validation/run.py` regenerates sections 1–4 and 6 (~25 min on
+2 cores; one section: `--only NAME`); `--tencate E1,E2,E3,E4` adds section 5 at d/h = 3 and 6
+(10–60 min a case), `--tencate-meshes 5x8x5/2,5x8x5/3,7x11x7/3` also d/h = 8.25 (1.5–2.5 h
+a case). It writes the sections below (doc/validation/section*.md), doc/validation/*.csv and
+the plots; the discussion is doc/validation/discussion.md. References:
+doc/references/README.md. Error = (ours − reference)/reference; d/h = particle diameter
+over the cell size at its surface; wall time is the solver's own, on a shared 2-core
+machine. Forces and torques come from λ (doc/method.md §9; with a fixed particle at steady
+state F = −κ∫λ, κ the pairing weight of §3), which the periodic arrays check against the
+exact balance F = f·|cell|.
 
 """
 

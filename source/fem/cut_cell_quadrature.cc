@@ -14,11 +14,10 @@ namespace fdparticle
      * A box goes to deal.II's generator only if, in some direction d, the gap between the
      * ball's centre X and the box is at least this fraction of the distance from X to the
      * box's farthest corner: then |∂ψ/∂x_d| is bounded away from zero relative to |∇ψ| and
-     * d is a height direction with a bounded slope. Closer boxes are split. Measured on
-     * balls with R/h = 1.2 and 2.4 (tests/unit/level_set_quadrature.cc), the errors at
-     * Level set order 6 are the same for 0.15 to 0.3 (worst 6.7e-6 at R/h = 1.2 in 3D,
-     * 2e-8 at 2.4); 0 (no splitting) leaves cells 44 % wrong, 0.35 splits into boxes the
-     * generator handles worse (9e-6 on a whole cell). 0.2 sits inside that plateau.
+     * d is a height direction with a bounded slope. Closer boxes are split. On balls with
+     * R/h = 1.2 and 2.4 (tests/unit/level_set_quadrature.cc) the errors are the same for
+     * 0.15 to 0.3; 0 (no splitting) leaves cells 44 % wrong, 0.35 splits into boxes the
+     * generator handles worse. 0.2 sits inside that plateau.
      */
     constexpr double min_height_slope = 0.2;
 
@@ -34,13 +33,12 @@ namespace fdparticle
      * midpoint there, owned by the side of the level set at that point. It gives up where
      * a face of the box is tangent to the sphere at a point of that face (the face's
      * restriction of ψ has a double root, definite nowhere around it): R a whole number of
-     * cells from a vertex-aligned centre, as scenes are often set up. Measured on a ball
-     * of R = 2h tangent to such faces (tests/unit/level_set_quadrature.cc): the cell's
-     * particle fraction was 1.6e-4 wrong with the generator's default 4, 6e-7 with 8,
-     * 3e-9 with 12 and 3e-10 from 16 on; and whether the tangent point lay just inside
-     * or just outside a face (a centre moved by round-off) decided between that error and
-     * none, so mirror-image cells differed and a sphere on a symmetry plane drifted off
-     * it. 12 adds about 430 points a split to those cells only.
+     * cells from a vertex-aligned centre, as scenes are often set up. For a ball of R = 2h
+     * tangent to such faces (tests/unit/level_set_quadrature.cc) the generator's default
+     * of 4 leaves the cell's particle fraction 1.6e-4 wrong, 12 leaves 3e-9. Whether the
+     * tangent point lies just inside or outside a face (round-off) decides between that
+     * error and none, so a large error makes mirror-image cells differ and a sphere on a
+     * symmetry plane drift off it. 12 adds about 430 points a split, to those cells only.
      */
     constexpr unsigned int max_generator_splits = 12;
 
@@ -82,27 +80,23 @@ namespace fdparticle
       prm.declare_entry("Cut cells", "gauss", Patterns::Selection("gauss|level set"),
                         "gauss: the seed's rule, 'Gauss points in cut cells' per direction, each "
                         "point counted for the particle that contains it (integrals jump as "
-                        "points cross the surface); level set: rules on the parts of the cell "
-                        "inside and outside the ball, generated from its level set (Saye 2015), "
-                        "smooth in the particle position.");
+                        "points cross the surface). level set: rules on the parts of the cell "
+                        "inside and outside the ball (Saye 2015), smooth in the particle "
+                        "position.");
       prm.declare_entry("Gauss points in cut cells", "7", Patterns::Integer(1, 30),
-                        "Gauss points per direction in cells cut by a particle surface; each "
-                        "point counts for the particle that contains it (the seed used 7).");
+                        "Gauss points per direction in cells cut by a particle surface (gauss "
+                        "rule); each point counts for the particle that contains it. 7: the "
+                        "seed's choice.");
       prm.declare_entry("Level set order", "6", Patterns::Integer(1, 12),
-                        "Points of the 1D Gauss rule the level-set rules are built from "
-                        "(1 to 12; error ~ h^(2n) for smooth surfaces: 6 integrates a ball's "
-                        "volume and second moments to 3e-8 relative at R/h = 2.4). In 3D the "
-                        "points are the assembly's cost: a run of 8 spheres took 0.88 times as "
-                        "long with 4 as with 6 and its velocities moved by 1.4e-4 relative "
-                        "(doc/method.md §7).");
+                        "Points of the 1D Gauss rule the level-set rules are built from (1 to 12; "
+                        "error ~ h^(2n) for smooth surfaces). In 3D they set the assembly's cost: "
+                        "lower it (e.g. 4) for speed at a small loss of accuracy (doc/method.md "
+                        "§7).");
       prm.declare_entry("Cut cell cost", "4", Patterns::Double(1, 1000),
-                        "The work of a cut cell relative to a regular one, for the partition "
-                        "of the mesh between MPI ranks (balanced by these weights at every "
-                        "refinement of the mesh, and again whenever the particles have moved "
-                        "the most loaded rank past 1.1 times the mean load). 1: the ranks get "
-                        "equal numbers of cells and are never rebalanced. "
-                        "4 and 8 balance the assembly of 64 level-set disks on 2 ranks "
-                        "(doc/particles.md): 23 % less assembly time than 1.");
+                        "Work of a cut cell relative to a regular one, for the partition of the "
+                        "mesh between MPI ranks, rebalanced at every refinement and when the most "
+                        "loaded rank exceeds 1.1 times the mean load. 1: equal cell counts, never "
+                        "rebalanced. The default balances level-set assembly (doc/particles.md).");
     }
     prm.leave_subsection();
   }
@@ -343,8 +337,8 @@ namespace fdparticle
     // those next to X shrink until they lie in the ball, after about log2(h sqrt(dim) / R)
     // halvings, so the recursion is shallow. Halves only across the long sides: a thin
     // slab next to X (a centre just inside a cell) split across its thin side too
-    // multiplies into 2^dim boxes a level instead of 2^(dim-1); a 3D ball of R = h/10
-    // then needed 6e5 points in one cell (3e4 now) and 2.4 GB for its FEValues.
+    // multiplies into 2^dim boxes a level instead of 2^(dim-1) (a 3D ball of R = h/10:
+    // 6e5 points in one cell instead of 3e4).
     bool   centre_interior = false;
     double longest = 0;
     for (unsigned int d = 0; d < dim; ++d)

@@ -61,23 +61,17 @@ namespace fdparticle
   {
     prm.enter_subsection("Multiplier");
     prm.declare_entry("Pairing time step", "0", Patterns::Anything(),
-                      "dt_p >= 0. 0: the pairing <lambda, v> = int(alpha lambda.v + mu "
-                      "grad lambda : grad v) uses alpha = 3 rho/(2 dt) of the current step "
-                      "(the seed, doc/method.md §0). dt_p > 0: alpha = 3 rho/(2 dt_p) in the "
-                      "pairing and in the fluid penalty, whatever dt is. Any pairing gives "
-                      "the same continuous problem, but the discrete rigidity constraint "
-                      "and its penalties then no longer change with dt, so a time-step "
-                      "study sees the scheme's own order (BDF2: 2) and a step halved by "
-                      "recovery solves the same discrete constraint (doc/method.md §4).");
+                      "dt_p >= 0. 0: the pairing <lambda, v> = int(alpha lambda.v + mu grad "
+                      "lambda : grad v) uses alpha = 3 rho/(2 dt) of the current step (the seed). "
+                      "dt_p > 0: alpha = 3 rho/(2 dt_p) whatever dt is, so the discrete "
+                      "constraint does not change with dt; set it for time-step studies "
+                      "(doc/method.md §4).");
     prm.declare_entry("Pairing viscous weight", "10", Patterns::Anything(),
-                      "c >= 0: the pairing over ball k weighs lambda.v with kappa = alpha + "
-                      "c mu/R_k^2 instead of alpha, in the rigidity constraint, the force and "
-                      "torque read from lambda and the fluid penalty. The rigid mode of "
-                      "lambda that carries the force is then about F/kappa, bounded in slow "
-                      "steps (alpha R^2/mu small), so two balls whose cut cells touch keep "
-                      "their own rigid motions. 0: the seed's pairing (alpha alone); two "
-                      "such balls then move as one in slow steps (doc/method.md §4, "
-                      "'Pairing viscous weight').");
+                      "c >= 0: the pairing over ball k weighs lambda.v with kappa = alpha + c "
+                      "mu/R_k^2 instead of alpha (constraint, force and torque, fluid penalty), "
+                      "which keeps the force mode of lambda bounded in slow steps, so two balls "
+                      "whose cut cells touch keep their own motions. 0: the seed's alpha alone "
+                      "(doc/method.md §4).");
     prm.leave_subsection();
     CutCellPenalties<dim>::declare_parameters(prm);
     InteriorPressure<dim>::declare_parameters(prm);
@@ -413,7 +407,7 @@ namespace fdparticle
       NewtonSystem::border_pattern(locally_owned, locally_relevant, particles.n_unknowns(), comm);
     if (particles.n_unknowns() == 0)
       return pattern;
-    // Rows: the multiplier DoFs (the pairing, doc/method.md §5) and the velocity DoFs (the
+    // Rows: the multiplier DoFs (the pairing, doc/method.md §3) and the velocity DoFs (the
     // kinematic closure's ∂ω/∂u); the pressure has no particle coupling.
     std::vector<unsigned int> coupled;
     for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)

@@ -10,11 +10,10 @@ namespace fdparticle
     /**
      * Slack of the band's edges, in units of the cell's size. For a centre on a vertex and
      * a radius of whole cells the edges R ± b h lie on mesh planes, and mirror-image cells
-     * must decide alike after the centre has moved off its plane of symmetry by round-off:
-     * 1e-12 a step on prm/dkt3d.prm, past the surface tolerance of 1e-10 R after seven
-     * steps, when one side of the pair's band lost a row of refined cells and the pair
-     * left its plane (v_y from 1e-10 to 1e-5 of the speed). A millionth of a cell (4e-8
-     * there) covers tens of thousands of such steps and moves no band edge that matters.
+     * must decide alike after the centre has drifted off its plane of symmetry by
+     * round-off (about 1e-12 a step on prm/dkt3d.prm); otherwise one side of a pair's band
+     * loses a row of refined cells and the pair leaves its plane. A millionth of a cell
+     * covers tens of thousands of such steps and moves no band edge that matters.
      */
     constexpr double band_tolerance = 1e-6;
   } // namespace

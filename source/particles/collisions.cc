@@ -17,10 +17,9 @@ namespace fdparticle
       prm.declare_entry("Model", "none", Patterns::Selection("none|repulsion|spring-dashpot"),
                         "Contact between particles. none: the run stops when two particles "
                         "overlap. repulsion: a short-range force along the line of centres "
-                        "(Glowinski et al. 2001) keeps them apart, with the law of the wall "
-                        "repulsion. spring-dashpot: a spring and a dashpot along the line of "
-                        "centres, compressed as the gap closes below Range, give a bounce "
-                        "with the restitution coefficient.");
+                        "(Glowinski et al. 2001), the law of the wall repulsion. spring-dashpot: "
+                        "a spring and a dashpot along the line of centres, active below Range, "
+                        "give a bounce with the Restitution coefficient.");
       prm.declare_entry("Range", "auto", Patterns::Anything(),
                         "Gap between two particle surfaces below which the force acts (a "
                         "length), or 'auto': the edge of the finest cells, as for the walls. "

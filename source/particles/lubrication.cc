@@ -17,14 +17,11 @@ namespace fdparticle
                         "gap whose force the resolved flow carries (doc/particles.md, "
                         "Lubrication).");
       prm.declare_entry("Gap shift", "auto", Patterns::Anything(),
-                        "s_0, the shift s of a gap below a cell (a length; s tapers from s_0 "
-                        "at contact to 0 at Resolved gap), or 'auto', fitted to the resolved "
-                        "force (doc/particles.md, Lubrication): at a wall c a* for the reduced "
-                        "radius a*, c = 0.033 (a ball approaching a wall at d/h = 4, 8, 16, in 2D "
-                        "and 3D); between two balls, whose sub-cell gap the resolved flow "
-                        "misses by far more, 0.97 h in 3D and 0.85 h in 2D (h the finest cell "
-                        "edge; two spheres approaching each other at d/h = 4, 8, two cylinders "
-                        "at d/h = 4, 8, 16).");
+                        "s_0, the shift s of a gap below a cell (a length; s tapers from s_0 at "
+                        "contact to 0 at Resolved gap), or 'auto', fitted to the resolved force: "
+                        "0.033 a* at a wall (a* the reduced radius), 0.97 h between balls in 3D "
+                        "and 0.85 h in 2D (h the finest cell edge; doc/particles.md, "
+                        "Lubrication).");
       prm.declare_entry("Resolved gap", "auto", Patterns::Anything(),
                         "Gap below which the correction acts (a length), or 'auto': three "
                         "finest cell edges, from where the resolved squeeze force has "

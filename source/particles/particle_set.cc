@@ -17,12 +17,10 @@ namespace fdparticle
     prm.enter_subsection("Particles");
     {
       prm.declare_entry("Particles", "", Patterns::Anything(),
-                        "';'-separated entries 'x, y, z : radius : density [: motion]' "
-                        "(2D: 'x, y : ...'), motion = free (default: force and torque "
-                        "balance), fixed, or 'prescribed : vx, vy, vz [: wx, wy, wz]' "
-                        "(constant velocity and angular velocity; 2D: 'vx, vy [: wz]'). "
-                        "Empty: plain (Navier-)Stokes flow, unless Particle file or Random "
-                        "particles give particles.");
+                        "';'-separated entries 'x, y, z : radius : density [: motion]' (2D: 'x, y "
+                        ": ...'), motion = free (default), fixed, or 'prescribed : vx, vy, vz [: "
+                        "wx, wy, wz]' (constant velocity and angular velocity; 2D: 'vx, vy [: "
+                        "wz]'). Empty: no particles besides Particle file and Random particles.");
       prm.declare_entry("Particle file", "", Patterns::Anything(),
                         "CSV file of more particles, one per line: 'x, y[, z], radius, "
                         "density[, motion[, vx, vy[, vz][, angular velocity]]]' (motion as "

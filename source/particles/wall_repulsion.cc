@@ -26,10 +26,10 @@ namespace fdparticle
                         "floor. With no gravity 'auto' gives no force: give a number.");
       prm.declare_entry("Model", "repulsion", Patterns::Selection("repulsion|spring-dashpot"),
                         "The law of the force. repulsion: Glowinski et al.'s force, growing "
-                        "quadratically as the gap closes below Range; a ball comes to rest "
-                        "above the wall. spring-dashpot: a spring and a dashpot compressed as "
-                        "the gap closes below Range, which bounce a ball off the wall with the "
-                        "Restitution coefficient, and optional friction.");
+                        "quadratically as the gap closes below Range; a ball comes to rest above "
+                        "the wall. spring-dashpot: a spring and a dashpot active below Range "
+                        "bounce a ball off the wall with the Restitution coefficient, with "
+                        "optional friction.");
       prm.declare_entry("Spring stiffness", "auto", Patterns::Anything(),
                         "spring-dashpot: normal force per unit compression Range - gap (in 2D "
                         "per unit length too), or 'auto': Stiffness / Range, so a ball resting "
@@ -40,11 +40,10 @@ namespace fdparticle
                         "own damping comes on top. Resolve the contact duration printed at the "
                         "start with about 10 time steps to get it.");
       prm.declare_entry("Friction coefficient", "0", Patterns::Double(0),
-                        "spring-dashpot: Coulomb friction coefficient between a ball and a "
-                        "wall (tangential force at most this times the normal force, against "
-                        "the sliding of the ball's surface on the wall, with a torque): a ball "
-                        "thrown along a wall starts rolling. 0: frictionless. Needs "
-                        "Particles/Angular velocity closure = torque balance.");
+                        "spring-dashpot: Coulomb friction coefficient between a ball and a wall "
+                        "(tangential force at most this times the normal force, against sliding, "
+                        "with a torque): a ball thrown along a wall starts rolling. 0: "
+                        "frictionless. Needs Particles/Angular velocity closure = torque balance.");
     }
     prm.leave_subsection();
   }

@@ -247,8 +247,8 @@ namespace fdparticle
       inverse_mass[i] = (m[i] > 0 ? 1.0 / m[i] : 0.0);
     Epetra_CrsMatrix G_scaled(*G);
     G_scaled.RightScale(inverse_mass);
-    // Gᵀ formed explicitly: EpetraExt's product with a transposed second factor took a
-    // quarter of a whole 3D solve (116 k unknowns), the plain product a fraction of that.
+    // Gᵀ formed explicitly: EpetraExt's product with a transposed second factor is many
+    // times slower than the plain product.
     EpetraExt::RowMatrix_Transpose transpose;
     Epetra_CrsMatrix &             G_transposed = dynamic_cast<Epetra_CrsMatrix &>(transpose(*G));
     Epetra_CrsMatrix               product(Copy, G->RowMap(), 0);

@@ -109,9 +109,8 @@ namespace fdparticle
     // terms as the whole where all points are fluid, none where all are the particle's, so
     // both ends compare exactly). That takes the cells inside the particles too: there p
     // and λ are jointly undetermined but for the penalties, and the cheap form of the
-    // preconditioner, which does not solve J_w, needs the patch to resolve that pair (on
-    // the 3D array at 7 cells per diameter, whose central cells lay more than a ring away
-    // from the cut cells, 227 instead of 43 FGMRES iterations without them).
+    // preconditioner, which does not solve J_w, needs the patch to resolve that pair even
+    // where the central cells lie more than a ring away from the cut cells.
     for (unsigned int c = 0; c < n_cells; ++c)
       {
         double fluid = 0, whole = 0;

@@ -101,20 +101,17 @@ namespace fdparticle
                         "(parallel) or KLU (serial, gathers the matrix on one rank).");
       prm.declare_entry("MUMPS ordering", "metis",
                         Patterns::Selection("metis|auto|amd|amf|qamd|pord"),
-                        "Fill-reducing ordering for MUMPS (ICNTL(7)). 'metis': METIS nested "
-                        "dissection, computed by fdparticle and given to MUMPS as its "
-                        "ordering (Debian's MUMPS has no METIS or SCOTCH of its own); the "
-                        "fewest flops and a cheap analysis. 'auto' lets MUMPS choose among "
-                        "the orderings it has (it picks PORD: 7 % more flops, 3x the analysis "
-                        "time on the 3D sediment scene); AMD, AMF and QAMD need 2-2.5x the "
-                        "flops of METIS there.");
+                        "Fill-reducing ordering for MUMPS (ICNTL(7)). metis: METIS nested "
+                        "dissection computed by fdparticle and given to MUMPS (Debian's MUMPS has "
+                        "no METIS of its own); the fewest flops and a cheap analysis. auto: "
+                        "MUMPS's choice (PORD); it and amd, amf, qamd need more flops "
+                        "(doc/performance.md).");
       prm.declare_entry("Direct solver memory", "0", Patterns::Double(0),
-                        "Largest memory, in GB, that the MUMPS factorization may need on one "
-                        "MPI rank, by the estimate of its analysis (INFOG(16)); a larger "
-                        "factorization stops the run at once with a message, before anything "
-                        "is allocated, instead of running the machine out of memory. 0: no "
-                        "limit (MUMPS then stops when an allocation fails, and so does the "
-                        "run).");
+                        "Largest memory, in GB per MPI rank, that the MUMPS factorization may "
+                        "need by its analysis's estimate (INFOG(16)); a larger one stops the run "
+                        "with a message before anything is allocated. 0: no limit (the run stops "
+                        "when an allocation fails). Set it to fail early instead of running the "
+                        "machine out of memory.");
       prm.declare_entry("Direct solver statistics", "false", Patterns::Bool(),
                         "Print, for every factorization, its wall time and (MUMPS) the "
                         "ordering used, the flops and the number of entries in the factors.");
@@ -303,9 +300,8 @@ namespace fdparticle
         auto *    amesos_mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
         const int info  = amesos_mumps ? amesos_mumps->GetINFOG()[0] : 0;
         // The factors do not fit in the machine's memory: a shorter time step gives the
-        // same matrix pattern and the same factors (on uniform 32³ cells of the 3D array,
-        // 1.8 M unknowns, MUMPS asked for 10¹⁰ entries, and the time loop halved Δt six
-        // times for nothing).
+        // same matrix pattern and the same factors, so the run stops (OutOfMemory) instead
+        // of halving Δt.
         if (info == mumps::out_of_memory)
           {
             std::ostringstream asked;

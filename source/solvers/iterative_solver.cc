@@ -19,75 +19,49 @@ namespace fdparticle
                         "Iterative solver: FGMRES iterations after which a linear solve "
                         "counts as failed (the step is then retried with a smaller time step).");
       prm.declare_entry("Krylov basis size", "100", Patterns::Integer(2),
-                        "Iterative solver: FGMRES restarts after this many iterations. Each "
-                        "basis vector costs two vectors of the size of the system, allocated "
-                        "only when used. A restart loses what the basis knew: 91 instead of "
-                        "59 iterations with 50 on the 3D array of doc/scaling.md.");
+                        "Iterative solver: FGMRES restarts after this many iterations. Each basis "
+                        "vector costs two vectors of the system's size, allocated only when used; "
+                        "a restart loses what the basis knew and costs iterations, so raise it "
+                        "together with Cheap iterations (doc/scaling.md).");
       prm.declare_entry("Cheap iterations", "100", Patterns::Integer(0),
                         "Iterative solver: FGMRES iterations tried first with the cheap "
-                        "preconditioner, one application of the block triangle of the "
-                        "velocity, multiplier and particle unknowns instead of an inner solve "
-                        "(doc/method.md §8); if they do not reach the tolerance, the solve "
-                        "continues from there with the inner solve. With the cut-cell patch "
-                        "the cheap form converges on the 2D and 3D scenes of doc/scaling.md, 5-7 "
-                        "times faster than the inner solve in 3D; with many particles and no "
-                        "patch it stalls and the inner solve takes over. The switch costs: on "
-                        "the 3D DKT pair at d/h = 8 (doc/particles.md) solves need up to 160 "
-                        "cheap iterations; with 100 the steps that fell back to the inner "
-                        "solve took 2-3.5 times as long as their neighbours, and with 300 (and "
-                        "a Krylov basis of 300) none fell back. 0: always the inner solve.");
+                        "preconditioner (no inner solve, doc/method.md §8); if they miss the "
+                        "tolerance the solve continues with the inner solve. 0: always the inner "
+                        "solve. Raise it, with Krylov basis size, when solves fall back, as for "
+                        "close pairs (doc/scaling.md).");
       prm.declare_entry("Inner tolerance", "1e-3", Patterns::Double(0, 1),
                         "Iterative solver: relative tolerance of the inner solve of the "
                         "velocity, multiplier and particle unknowns in each application of "
                         "the preconditioner (doc/method.md §8).");
       prm.declare_entry("Cut cell patch layers", "1", Patterns::Integer(-1, 3),
-                        "Iterative solver: after each application of the block preconditioner, "
-                        "solve exactly (MUMPS, on all ranks together) for the velocity, "
-                        "multiplier and pressure of the cells inside the particles, of the "
-                        "nearly covered cut cells (Cut cell patch fluid fraction) and of this "
-                        "many rings of cells around them; -1: no patch. With 1 the FGMRES "
-                        "iterations stop growing with refinement (the cell-by-cell pressure "
-                        "approximation misses how a cell that a particle almost covers couples "
-                        "to its neighbours) and the cheap form of the preconditioner converges "
-                        "on 3D scenes (Cheap iterations). Its factors grow faster than its size "
-                        "(mostly the shell of cells around the particle surfaces): a patch "
-                        "above Cut cell patch memory, or that MUMPS cannot factor, is dropped "
-                        "with a warning and the solve goes on without it (doc/scaling.md). With "
-                        "many particles a few cells across (a suspension) the patch trades "
-                        "memory for time: with 25 spheres the step took 1.4 times as long with "
-                        "it at 2 cells per diameter, and was 1.4 and 1.2 times faster at 3 and "
-                        "4, each time with about 3 times the memory (above the default Cut "
-                        "cell patch memory at 4; doc/scaling.md): -1 where memory is short.");
+                        "Iterative solver: after each preconditioner application, solve exactly "
+                        "(MUMPS, all ranks) for the cells inside the particles, the nearly "
+                        "covered cut cells and this many rings around them (doc/method.md §8). 1 "
+                        "keeps the FGMRES iterations from growing with refinement. -1: no patch, "
+                        "for suspensions short of memory (doc/scaling.md).");
       prm.declare_entry("Cut cell patch memory", "4", Patterns::Double(0),
-                        "Iterative solver: the most memory, in GB per rank, that the "
-                        "factorization of the cut-cell patch may take on the rank that needs "
-                        "most, estimated by MUMPS's analysis before anything is factored; a "
-                        "larger patch is dropped with a warning (one per run) and the solve "
-                        "goes on without it, with more iterations. 0: no limit.");
+                        "Iterative solver: largest memory, in GB per rank, that the factorization "
+                        "of the cut-cell patch may take, by MUMPS's estimate before factoring; a "
+                        "larger patch is dropped with one warning and the solve goes on without "
+                        "it, with more iterations. 0: no limit. Raise it on machines with more "
+                        "memory (doc/scaling.md).");
       prm.declare_entry("Cut cell patch fluid fraction", "0.25", Patterns::Double(0, 1),
                         "Iterative solver: only cut cells whose fluid part is at most this "
-                        "fraction of the cell seed the cut-cell patch (with its rings): the "
-                        "cells that a particle almost covers are where the cell-by-cell "
-                        "pressure approximation fails. 0.25 keeps the FGMRES counts of the "
-                        "whole shell (1) within 0-3 iterations with 20-60 % fewer patch "
-                        "unknowns on the 3D scenes of doc/scaling.md; with 0.1 no cell of "
-                        "the 3D array qualified at 8-10 cells per diameter.");
+                        "fraction of the cell seed the cut-cell patch: where a particle almost "
+                        "covers a cell the cell-by-cell pressure approximation fails. 0.25 keeps "
+                        "the iterations of the whole shell (1) with fewer patch unknowns "
+                        "(doc/scaling.md).");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),
-                        "Print, for every linear solve, the FGMRES iterations, the inner "
-                        "iterations, the residual reached, the cut-cell patch's size and "
-                        "memory, and the wall time of building the preconditioner and of "
-                        "iterating (each with the patch's part), and of the iterating's "
-                        "main parts: the products with the Newton matrix, the V-cycles of "
-                        "the velocity and multiplier blocks, and the particle block (rank "
-                        "0's times).");
+                        "Print, for every linear solve, the FGMRES and inner iterations, the "
+                        "residual reached, the cut-cell patch's size and memory, and rank 0's "
+                        "wall times of building the preconditioner and of iterating, each split "
+                        "into its main parts.");
       prm.declare_entry("Reuse preconditioner", "true", Patterns::Bool(),
                         "Iterative solver: keep the preconditioner for new Jacobians (Newton "
-                        "iterations, time steps with the same mesh) while it converges about "
-                        "as fast as on the Jacobian it was built for: rebuilt when a solve "
-                        "needs more than 1.5 times the FGMRES iterations per tenfold "
-                        "residual reduction of the slowest solve with that Jacobian "
-                        "(doc/method.md §8). false: a new preconditioner for every "
-                        "Jacobian.");
+                        "iterations, time steps on the same mesh) until a solve needs more than "
+                        "1.5 times the FGMRES iterations per tenfold residual reduction of the "
+                        "slowest solve with its own Jacobian (doc/method.md §8). false: a new "
+                        "preconditioner for every Jacobian.");
     }
     prm.leave_subsection();
   }

@@ -9,19 +9,16 @@ namespace fdparticle
     prm.enter_subsection("Solver");
     {
       prm.declare_entry("Linear solver", "direct", Patterns::Selection("direct|iterative|auto"),
-                        "How the Newton system is solved (doc/method.md §8). 'direct': sparse "
-                        "factorization (Direct solver) and the particle unknowns by their "
-                        "Schur complement; exact, time and memory growing faster than the "
-                        "unknowns. 'iterative': FGMRES with a block preconditioner; memory "
-                        "linear in the unknowns, to the Newton tolerance (inexact Newton). "
-                        "'auto': iterative when the mesh a run starts (or resumes) with has at least 'Iterative solver "
-                        "from' finite-element unknowns, else direct (kept for the whole run).");
+                        "How the Newton system is solved (doc/method.md §8). direct: sparse "
+                        "factorization, exact; time and memory grow faster than the unknowns. "
+                        "iterative: FGMRES with a block preconditioner, memory linear in the "
+                        "unknowns. auto: iterative if the first mesh of a run (or resume) has at "
+                        "least 'Iterative solver from' unknowns.");
       prm.declare_entry("Iterative solver from", "500000", Patterns::Double(0),
-                        "Linear solver = auto: the problem size (unknowns) from which the "
-                        "iterative solver is used. The default is where the direct solver "
-                        "needs more than a quarter of a 24 GB machine in 3D; the iterative "
-                        "solver is as fast from about 100 k unknowns on the steady 3D array and "
-                        "450 k on the 3D sediment step, with half the memory (doc/scaling.md).");
+                        "Linear solver = auto: the number of finite-element unknowns from which "
+                        "the iterative solver is used for the whole run. The default is where the "
+                        "direct solver needs a quarter of a 24 GB machine in 3D; lower it to save "
+                        "memory (doc/scaling.md).");
     }
     prm.leave_subsection();
     DirectSolver::declare_parameters(prm);

@@ -32,10 +32,10 @@ namespace fdparticle
   /**
    * Where the integrals over the balls P_k are evaluated (doc/method.md §6 "Integration over
    * the particles", §7). A cell away from every particle gets the ordinary 3-point Gauss rule,
-   * exact for the Q2 integrands on affine cells. A cut cell gets the seed's n-point Gauss
-   * rule, and every point belongs to the particle that contains it or to the fluid
-   * (χ_P tested point by point). This is the one place that decides which point lies in
-   * which particle; other cut-cell rules (level set) are added here.
+   * exact for the Q2 integrands on affine cells. A cut cell gets either the seed's n-point
+   * Gauss rule, every point belonging to the particle that contains it or to the fluid
+   * (χ_P tested point by point), or level-set rules on its parts in and out of the balls.
+   * This is the one place that decides which point lies in which particle.
    */
   template <int dim>
   class CutCellQuadrature
@@ -121,10 +121,10 @@ namespace fdparticle
 
     /**
      * Append to inside and outside the rules (real coordinates) of the parts of box in and
-     * out of the ball of centre X (the image that meets the box) and radius. A box whose closure holds the ball's centre is split first (at the
-     * centre, then in halves), because there the level set has no height direction and
-     * deal.II's generator falls back to rules that are wrong by up to 14 % for the Q2
-     * integrands (measured on a centre at a cell vertex) and not mirror symmetric.
+     * out of the ball of centre X (the image that meets the box) and radius. A box whose
+     * closure holds the ball's centre is split first (at the centre, then in halves):
+     * there the level set has no height direction and deal.II's generator falls back to
+     * rules that are wrong by up to 14 % for the Q2 integrands and not mirror symmetric.
      */
     void append_ball_rules(const BoundingBox<dim> &box, const Point<dim> &X, const double radius,
                            std::vector<Point<dim>> &inside_points,

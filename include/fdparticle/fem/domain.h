@@ -32,10 +32,9 @@ namespace fdparticle
 
     /**
      * The most cells a mesh may have; a scene asking for more is refused before the mesh
-     * is built. 1e7 is 100 times the largest mesh run with the code (about 1e5 cells):
-     * setting up the Q2/Q2/P1 unknowns alone takes about 10 kB per cell in 2D and 90 kB
-     * in 3D (measured), so 1e7 cells need 0.1-1 TB before the direct solver's factors.
-     * A larger request is a mistake (one refinement level too many), not a scene.
+     * is built. 1e7 is 100 times the largest mesh run with the code: the Q2/Q2/P1
+     * unknowns alone take about 10 kB per cell in 2D and 90 kB in 3D, so 1e7 cells need
+     * 0.1–1 TB. A larger request is a mistake (one refinement level too many), not a scene.
      */
     static constexpr double max_cells = 1e7;
 

@@ -22,7 +22,7 @@ namespace fdparticle
    * over the steps after the start-up (the first max(3, N/10) steps of N are left out: the
    * start from rest is not smooth at any resolution). A smoothly sampled curve gives
    * S ≈ Δt² |V''|/|V| ≪ 1; a jump of relative size j every m steps gives S ≈ j √(2/m).
-   * (The ratio to the first difference was tried: near terminal velocity V' ≈ 0 and any
+   * (Not the ratio to the first difference: near terminal velocity V' ≈ 0 and any
    * wiggle, however small, makes that ratio O(1).) The definition is fixed so that runs can
    * be compared.
    */

@@ -63,12 +63,8 @@ namespace fdparticle
     /**
      * The 'auto' shift s_0 = shift_fraction a*, fitted to the resolved force on a ball
      * approaching a wall (benchmarks/lubrication_wall.py, doc/particles.md). Below a cell
-     * the measured shift hardly depends on the gap or on the mesh (3D: 0.02–0.04a at
-     * d/h = 4, 8 and 16; 2D: 0.01–0.04a), so one fraction of the radius serves every
-     * mesh, and the same in 2D and 3D. 3D: a sphere against Brenner's exact series,
-     * within 6 % at gaps 0.03a … a; 2D: a cylinder against the resolved force
-     * extrapolated from d/h = 512 and 1024, within 11.2 % (the sub-cell force scatters
-     * with where the gap sits in its cell).
+     * the fitted shift hardly depends on the gap or on the mesh, so one fraction of the
+     * radius serves every mesh, in 2D and 3D.
      */
     static constexpr double shift_fraction = 0.033;
     /**
@@ -76,12 +72,9 @@ namespace fdparticle
      * edge), fitted to two equal balls approaching each other (benchmarks/
      * lubrication_pair.py, doc/particles.md): their resolved force below a cell is far
      * lower than at a wall, because one Q2 velocity has to turn from +U to −U across the
-     * gap, and the shift is about a cell at every gap below a cell. 3D: 0.29–0.30a at
-     * d/h = 4, 0.15–0.17a at 8; 0.97 minimises the largest error against Brenner's exact
-     * series (2.9 % over gaps 0.03a … a at d/h = 4 and 8; a fraction of a* fits to 5.6 %).
-     * 2D: 0.21–0.23a at d/h = 4, 0.14a at 8, 0.10–0.12a at 16; 0.85 minimises the largest
-     * error against the resolved force extrapolated from d/h = 512 and 1024 (9.4 % over
-     * gaps 0.05a … a at d/h = 4, 8, 16; a fraction of a*: 12.4 %).
+     * gap, and the shift is about a cell at every gap below a cell, better fitted in cells
+     * than as a fraction of a*. Each value minimises the largest error against Brenner's
+     * exact series (3D) or a fine-mesh reference (2D).
      */
     static constexpr double pair_shift_cells = (dim == 3 ? 0.97 : 0.85);
     /// The resolved gap of 'auto', in finest cell edges: from three cells up the resolved

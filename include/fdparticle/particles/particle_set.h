@@ -90,12 +90,10 @@ namespace fdparticle
     /// Points closer to the surface than this fraction of the radius count as on it.
     /// A mesh vertex that lies on the surface in exact arithmetic (a centre on a vertex
     /// and a radius of whole cells, as scenes are often set up) falls on either side by
-    /// round-off, and differently from its mirror image: cells then became cut or not
+    /// round-off, and differently from its mirror image: cells would become cut or not
     /// (penalties, multiplier DoFs) at random, and a sphere on the axis of a symmetric
-    /// box drifted sideways at 1.8 % of its settling speed in its first step (round-off
-    /// with the tolerance and the level-set rules of doc/method.md §7;
-    /// tests/symmetry_vertex_3d.prm). Far above round-off (10⁻¹⁶), far below anything a
-    /// mesh resolves.
+    /// box would drift sideways (tests/symmetry_vertex_3d.prm). Far above round-off
+    /// (10⁻¹⁶), far below anything a mesh resolves.
     static constexpr double surface_tolerance = 1e-10;
 
     /// The box's length in each periodic direction, 0 in the others. A ball that crosses

@@ -43,7 +43,7 @@ namespace fdparticle
      * Draws of a centre per ball before placement gives up. Random sequential addition
      * jams near a solid fraction of 0.55 (2D) and 0.38 (3D), where the free area left to
      * a centre shrinks to nothing; 10^4 draws find a place while one exists in more than
-     * 1/10^4 of the sub-box, and cost under a second for 10^3 balls.
+     * 1/10^4 of the sub-box, and stay cheap.
      */
     static constexpr unsigned int max_draws_per_ball = 10000;
 

@@ -37,8 +37,7 @@ namespace fdparticle
    * velocity is rigid, so the pressure there sees little besides its penalty; in the fluid
    * the Stokes Schur complement is close to −M_p/μ. The inertial one, −ρ_f c0 L⁻¹ with
    * L = G M_u⁻¹ Gᵀ (G = A_pu, M_u the diagonal of the velocity mass), one AMG V-cycle,
-   * matters when ρ_f c0 h²/μ is not small: 390 instead of 31 FGMRES iterations at
-   * Δt = 1e-4 on the 3D sediment scene without it (doc/scaling.md).
+   * matters when ρ_f c0 h²/μ is not small (small Δt; doc/scaling.md).
    *
    * p and λ are jointly undetermined inside a particle (only the penalties fix them), and
    * an approximation of the λ block alone spoils that balance: the inner solve of the
@@ -115,31 +114,22 @@ namespace fdparticle
   private:
     /// Weight of the particle part of a cell in the pressure mass of S_p. The exact
     /// Schur complement of a cell almost filled by a particle is not as small as its
-    /// fluid part alone says (its velocity is tied to the neighbours); with 0.01 the
-    /// eigenvalues of S_p⁻¹ times the exact one lie in [0.08, 3.8] on the 2D sediment
-    /// scene (h = R/1.6), against [0.08, 570] with 0 and [0.03, 1.7] with 0.03.
+    /// fluid part alone says (its velocity is tied to the neighbours); 0.01 keeps the
+    /// eigenvalues of S_p⁻¹ times the exact one in [0.08, 3.8] on the 2D sediment scene
+    /// (0: up to 570).
     static constexpr double particle_weight = 0.01;
 
-    /// ML settings for the two AMG preconditioners. deal.II's defaults (two smoother
-    /// sweeps, aggregation threshold 1e-4) needed 31 inner iterations per outer one on the
-    /// steady periodic 3D array (6³ cells); three sweeps and thresholds that drop the weak
-    /// couplings of the Q2 matrices (0.02 for K, 0.05 for A_λλ + M, whose rows outside the
-    /// particles are only diagonal) need 10–14, and the whole solve took 2.5–4.5 times less
-    /// time on the 3D array and sediment scenes (doc/scaling.md). Larger thresholds (0.1)
-    /// coarsen too fast and the count rises again. On large 3D problems one sweep: a row
-    /// of the Q2 velocity matrix has about 375 entries (50 in 2D), so the smoother's
-    /// products are most of a V-cycle there, and in the cheap form (one V-cycle per
-    /// FGMRES iteration) one sweep took 5–25 % more FGMRES iterations but 4–31 % less
-    /// time iterating on the 3D sediment step (61 k–1 M unknowns) and array (60 k–157 k);
-    /// with the inner solve 81 s instead of 136 s (sediment, 198 k; measured on
-    /// 2026-11-26, doc/scaling.md). Below that the cheap form, close to its limit, falls
-    /// back to the inner solve more often with one sweep: on the 3D sediment step at
-    /// 27 k unknowns every case of benchmarks/robustness.sh took more time (up to 2.1
-    /// times), and the 3D array at 14 k unknowns 35 instead of 28 FGMRES iterations. In 2D
-    /// three: one took 52 % more iterations on settling_many_2d, for more time.
+    /// ML settings for the two AMG preconditioners (doc/method.md §8, doc/scaling.md).
+    /// Three sweeps and aggregation thresholds that drop the weak couplings of the Q2
+    /// matrices (0.02 for K; 0.05 for A_λλ + M, whose rows outside the particles are only
+    /// diagonal) need far fewer inner iterations than deal.II's defaults; 0.1 coarsens too
+    /// fast. Large 3D problems take one sweep: a Q2 velocity row has about 375 entries, so
+    /// the smoother is most of a V-cycle and saving it outweighs the extra FGMRES
+    /// iterations. Smaller 3D problems and 2D keep three: there the cheap form, close to
+    /// its limit, would fall back to the inner solve more often.
     static constexpr unsigned int smoother_sweeps = 3, large_3d_smoother_sweeps = 1;
-    /// Unknowns of A from which a 3D problem counts as large (between 27 k and 60 k,
-    /// where the measurements above change sides).
+    /// Unknowns of A from which a 3D problem counts as large (one sweep wins from
+    /// somewhere between 27 k and 60 k).
     static constexpr types::global_dof_index large_3d_problem = 50000;
     static constexpr double       velocity_aggregation_threshold   = 0.02;
     static constexpr double       multiplier_aggregation_threshold = 0.05;

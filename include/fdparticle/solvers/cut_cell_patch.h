@@ -31,8 +31,7 @@ namespace fdparticle
    * (where p and λ are jointly undetermined but for the penalties), the velocity and
    * multiplier DoFs of those cells, and `layers` more rings of cells grown through the
    * matrix graph; everything outside is held fixed. Most of it is the shell around the
-   * particle surfaces: with particle-following refinement the interior is coarse (2 642
-   * of 58 838 patch unknowns on the 3D array at c = 0.125 and 10 cells per diameter).
+   * particle surfaces: with particle-following refinement the interior is coarse.
    *
    * The rings grow across the partition (each rank hands the others the DoFs of theirs
    * that its cells reach), each DoF carrying the particle whose seed cells reached it;
@@ -40,16 +39,11 @@ namespace fdparticle
    * components are left out: the patch matrix is block diagonal, one block per component,
    * whatever the partition. All ranks factor it together (MUMPS, each rank's rows where
    * A has them): the patch's rows of A and its residual stay on their owners, and a
-   * large particle's patch is shared by the ranks instead of held up by one. (Each
-   * component solved whole by one rank with UMFPACK, the previous form, held the 2-rank
-   * speedup of a one-particle scene at 1.3–1.5, and UMFPACK took 2.2 times MUMPS's time
-   * to factor and 2.5 times to solve the 50 k-unknown patch of the sediment step at
-   * n = 24 on one rank; doc/scaling.md, "The patch on all ranks".) Where the partition
-   * ran through the patch and each rank solved its part approximately (with one layer of
-   * overlap), the sediment step at n = 21 (1 M unknowns) stalled on 2 ranks (153 FGMRES
-   * iterations, 74 on one rank; doc/scaling.md, Across ranks): the patch is solved whole.
-   * With one ring the FGMRES count stops growing with refinement, and the cheap form of
-   * the preconditioner (no inner solve) converges on 3D scenes (doc/scaling.md).
+   * large particle's patch is shared by the ranks instead of held up by one. The patch
+   * is solved whole: solved approximately per rank where the partition cuts it, FGMRES
+   * stalled on 2 ranks at 1 M unknowns (doc/scaling.md). With one ring the FGMRES
+   * count stops growing with refinement, and the cheap form of the preconditioner (no
+   * inner solve) converges on 3D scenes.
    */
   class CutCellPatch
   {
@@ -108,12 +102,10 @@ namespace fdparticle
     std::unique_ptr<Epetra_Import>    column_import;
     std::unique_ptr<Epetra_Vector>    columns;
     /// The patch matrix, with the residual and correction vectors of its solve (its rows'
-    /// layout), and MUMPS's factorization of it, ordered by METIS (mumps::nested_dissection:
-    /// on the patch of the sediment step at n = 24, 50 126 unknowns, in 1.8 s on rank 0).
-    /// MUMPS's default threshold pivoting (CNTL(1) = 0.01) delays about 5 % of the pivots
-    /// there and solves to a relative residual of 10⁻⁹; with 10⁻⁸ (UMFPACK's setting here
-    /// before) it left 10⁻⁵ for at most a tenth less time (measured on 2026-11-27 beside
-    /// another run), so the default stays.
+    /// layout), and MUMPS's factorization of it, ordered by METIS (mumps::nested_dissection).
+    /// MUMPS's default threshold pivoting (CNTL(1) = 0.01) is kept: it solves the patch to
+    /// a relative residual of about 10⁻⁹, a smaller threshold (10⁻⁸) leaves 10⁻⁵ for
+    /// little saved time.
     std::unique_ptr<Epetra_CrsMatrix>     matrix;
     std::unique_ptr<Epetra_Vector>        residual, correction;
     std::unique_ptr<Epetra_LinearProblem> problem;

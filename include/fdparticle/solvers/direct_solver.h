@@ -68,11 +68,8 @@ namespace fdparticle
     /**
      * Particle unknowns up to which the Schur complement is used. Its cost is m solves per
      * new Jacobian; K's is a new analysis whenever a particle's cells change (every step
-     * on a moving particle) and a copy of A. Measured on 2026-11-23: on the 3D sediment
-     * scene (61 324 DoFs, m = 6) the 7 right-hand sides cost 0.34 s against 0.88 s for
-     * K's analysis and 28 % more peak memory; on 16 disks in 2D (m = 46, 19 042 DoFs, 3
-     * Jacobians a step) K took half the time. The crossover lies near m = 12-18 in both:
-     * two spheres in 3D, four disks in 2D.
+     * on a moving particle) and a copy of A. The two cost the same near m = 12–18 (two
+     * spheres in 3D, four disks in 2D; doc/method.md §8).
      */
     static constexpr unsigned int max_schur_unknowns = 12;
 

@@ -57,11 +57,10 @@ namespace fdparticle
     bool         verbose        = false;
     /// See the class documentation: a preconditioner that needs more than this many times
     /// its reference iterations per decade has drifted too far from the operator. 1.5: the
-    /// reference is already the slowest solve with the fresh preconditioner (one
-    /// preconditioner on one Jacobian took 2.5 to 11.6 iterations per decade in one step of
-    /// the adaptive 3D cavity, as the right-hand side and the tolerance changed), so a
+    /// reference is already the slowest solve with the fresh preconditioner (the rate
+    /// varies severalfold on one Jacobian with the right-hand side and the tolerance), so a
     /// drift must make a solve half again as slow as the worst of those; a rebuild costs
-    /// 40-90 iterations' time there (doc/performance.md).
+    /// tens of iterations' time (doc/performance.md).
     static constexpr double rebuild_growth = 1.5;
     /// Solves that reduce their residual less than tenfold are too short to give a rate.
     static constexpr double min_rate_decades = 1;

@@ -18,8 +18,8 @@ namespace fdparticle
     /**
      * Nested-dissection ordering of the symmetrized pattern of E, computed by METIS on
      * rank 0 after gathering the pattern there (MUMPS analyses on the host anyway; Debian's
-     * MUMPS has neither METIS nor SCOTCH of its own, and its PORD needed 7 % more flops and
-     * 3 times the analysis time on the 3D sediment scene, doc/performance.md). E's rows
+     * MUMPS has neither METIS nor SCOTCH of its own, and its PORD needs more flops and a
+     * slower analysis, doc/performance.md). E's rows
      * must be numbered 0 … n − 1 over all ranks. Returns MUMPS's PERM_IN on rank 0 (1-based
      * position of each unknown in the pivot order), an empty vector elsewhere. Collective.
      */
@@ -38,9 +38,9 @@ namespace fdparticle
 
     /// ICNTL(14): extra working space in percent of the analysis' estimate. MUMPS's default
     /// is 20; the saddle-point matrices here delay pivots (doc/performance.md, working
-    /// space), so we start with more margin. Each retry after a shortfall analyses again
+    /// space), so the margin starts higher. Each retry after a shortfall analyses again
     /// with workspace_growth times the margin, at most max_workspace_retries times
-    /// (30 % → 7680 %): a shortfall beyond that is no longer an estimate that was short but
+    /// (30 % → 1920 %): a shortfall beyond that is no longer an estimate that was short but
     /// a matrix MUMPS cannot factor.
     constexpr int initial_workspace_percent = 30;
     constexpr int workspace_growth          = 4;

@@ -46,9 +46,8 @@ namespace fdparticle
   {
     TimerOutput::Scope t(*timer, "setup");
     dof_handler.distribute_dofs(fe);
-    // Chosen once, on the first mesh: 'auto' by its unknowns. An estimate from the
-    // refinement band before the mesh existed counted a mesh of 431 k unknowns as more
-    // than 500 k (the 3D array of doc/studies.md §4).
+    // Chosen once, on the first mesh: 'auto' by its actual unknowns (an estimate from the
+    // refinement band before the mesh exists overcounts).
     if (!linear_solver)
       linear_solver = LinearSolver::create(prm, dof_handler.n_dofs());
     setup_blocks();

@@ -10,23 +10,21 @@ namespace fdparticle
   {
     prm.enter_subsection("Multiplier");
     prm.declare_entry("Fluid penalty", "0.004", Patterns::Anything(),
-                      "s >= 0 in the term s*kappa^2/(alpha + mu/R^2)*int(lambda.eta) over the fluid "
-                      "part of cut cells, kappa the pairing weight (Pairing viscous weight); "
-                      "the seed's weak lambda = 0 in the fluid, 3.18a. It keeps the "
-                      "rows of multipliers that barely meet a particle well posed.");
+                      "s >= 0 in the term s*kappa^2/(alpha + mu/R^2)*int(lambda.eta) over the "
+                      "fluid part of cut cells, kappa the pairing weight (Pairing viscous "
+                      "weight); the seed's weak lambda = 0 in the fluid. It keeps the rows of "
+                      "multipliers that barely meet a particle well posed (doc/method.md §4).");
     prm.declare_entry("Strain penalty", "0.15", Patterns::Anything(),
                       "s_e >= 0 in the term s_e*mu*int(2 eps(lambda):eps(eta)) over the fluid "
                       "part of cut cells. It softens the rigidity constraint of multipliers "
-                      "that lie mostly in the fluid (0: the cut cells lock, the particle acts "
-                      "O(h) too large) without touching the rigid modes of lambda, which "
-                      "carry force and torque (doc/method.md, 'Strain penalty').");
+                      "mostly in the fluid without touching the rigid modes that carry force and "
+                      "torque; 0: the cut cells lock and the particle acts O(h) too large "
+                      "(doc/method.md §4).");
     prm.declare_entry("Penalty ramp", "0.2", Patterns::Anything(),
                       "theta_0 >= 0: in a cut cell whose particle fraction theta is below "
-                      "theta_0, both penalties above are scaled by theta/theta_0, so they "
-                      "switch on continuously as a cell starts to be cut (smoother particle "
-                      "velocities, doc/smoothness.md). 0: off, the penalties switch on at "
-                      "full strength (then Strain penalty = 0.05 was the accurate choice, "
-                      "doc/method.md §4).");
+                      "theta_0, both penalties above are scaled by theta/theta_0, so they switch "
+                      "on continuously as a cell starts to be cut (smoother particle velocities, "
+                      "doc/smoothness.md). 0: full strength at once (doc/method.md §4).");
     prm.leave_subsection();
   }
 
@@ -77,8 +75,8 @@ namespace fdparticle
     // Weak λ = 0 on the fluid part of a cut cell (seed 3.18a), weighted by κ²/(α + μ/R²).
     // The rigid mode of λ carries the particle's force through κ∫λ, so it grows like 1/κ;
     // the weight must scale like κ² where κ ≪ μ/R² (only with the seed's κ = α, c = 0)
-    // or the particle leaks in proportion to Δt (weight α + μ/R²: settling 10x too fast
-    // at Δt = 1). For α ≫ μ/R² it is sκ, a fixed fraction of the pairing
+    // or the particle leaks in proportion to Δt (as it does with the weight α + μ/R²).
+    // For α ≫ μ/R² it is sκ, a fixed fraction of the pairing
     // (doc/method.md §4, "Fluid penalty" and "Pairing viscous weight").
     const double R = particles[nearest_surface].radius;
     const double kappa = s.pairing_weight(R);

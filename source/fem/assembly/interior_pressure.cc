@@ -9,12 +9,9 @@ namespace fdparticle
     prm.enter_subsection("Multiplier");
     prm.declare_entry("Interior pressure penalty", "1e-3", Patterns::Anything(),
                       "delta >= 0 in the term -(delta/mu)*int((p - p_hydrostatic) q) over cells "
-                      "inside a particle. Inside a rigid body p and lambda are determined only "
-                      "together (p + phi, lambda + psi with <psi, v> = int phi div v solve the "
-                      "same equations, up to the multiplier penalties); this picks the "
-                      "hydrostatic pressure there. It switches on as a cell becomes inside, "
-                      "so keep it small: delta = 1 made the particle velocity step by 5e-4 at "
-                      "every such event, 1e-3 removes the steps, 1e-6 is too weak for "
+                      "inside a particle, where p and lambda are otherwise determined only "
+                      "together: it picks the hydrostatic pressure. It switches on as a cell "
+                      "becomes inside, so keep it small; 1e-3 avoids velocity jumps yet outweighs "
                       "round-off (doc/method.md §4).");
     prm.leave_subsection();
   }

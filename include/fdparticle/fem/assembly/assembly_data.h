@@ -89,7 +89,7 @@ namespace fdparticle
   /**
    * What the terms add to: the cell's residual and Jacobian, the particle coupling of the
    * free particles the cell meets (the cell's part of the border columns B and rows C of
-   * the Newton system, doc/method.md §5) and the particle integrals of this rank.
+   * the Newton system, doc/method.md §3) and the particle integrals of this rank.
    */
   template <int dim>
   struct AssemblyCopy
