@@ -140,21 +140,20 @@ def run(executable, args, ranks, cwd):
     return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
 
 
-AXES = "xyz"
-# particles.csv columns by kind: (kind, component) for vectors, pseudovectors (angular
-# velocity, torque) and positions; a mirror normal to axis a negates component a of a
-# vector and the other components of a pseudovector.
-VECTOR_COLUMNS = {"v": "velocity", "f": "force", "contact_f": "force", "mean_v": "velocity",
-                  "mean_particle_v": "velocity"}
+AXES = testlib.AXES
+# Of the vector columns of testlib.VECTOR_FAMILIES, the pseudovectors: a mirror normal to
+# axis a negates component a of a vector and the other components of a pseudovector.
 PSEUDO_COLUMNS = {"w": "angular velocity", "t": "torque"}
 
 
 def split_column(name):
-    """('v', 'x') for 'vx', ('contact_f', 'y') for 'contact_fy', None for others."""
-    if len(name) >= 2 and name[-1] in AXES and name[:-1] in {**VECTOR_COLUMNS, **PSEUDO_COLUMNS}:
-        return name[:-1], name[-1]
-    if name in AXES:
-        return "position", name
+    """('v', 'x') for 'vx', ('contact_f', 'y') for 'contact_fy', ('position', 'x') for 'x',
+    None for a scalar column (testlib.column_family)."""
+    family = testlib.column_family(name)
+    if family == "position":
+        return family, name
+    if family in testlib.VECTOR_FAMILIES:
+        return family, name[-1]
     return None
 
 
