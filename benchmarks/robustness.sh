@@ -49,8 +49,7 @@ run() { # case value dt mu particles
     return
   fi
   read -r wall kb < "$d/time"
-  row=$(sed -n 2p "$d/out/statistics.csv")
-  echo "$1,$2,$(echo "$row" | cut -d, -f5,7,8),$wall,$((kb / 1024))" | tee -a "$csv"
+  echo "$1,$2,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" 1 dofs linear_iterations inner_iterations),$wall,$((kb / 1024))" | tee -a "$csv"
 }
 
 one="0, 1, 0 : 0.2"

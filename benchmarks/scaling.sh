@@ -48,8 +48,7 @@ for name in sediment array; do
         continue
       fi
       read -r wall kb < "$d/time"
-      row=$(tail -1 "$d/out/statistics.csv")
-      echo "$name,$n,$solver,$(echo "$row" | cut -d, -f5,7,8),$wall,$((kb / 1024))" |
+      echo "$name,$n,$solver,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations),$wall,$((kb / 1024))" |
         tee -a "$csv"
     done
   done

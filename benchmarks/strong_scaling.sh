@@ -36,11 +36,10 @@ for n in $sizes; do
       continue
     fi
     read -r wall kb < "$d/time"
-    row=$(tail -1 "$d/out/statistics.csv")
     # "built in A s (patch B s), iterations C s (... D s, its patch E s; this solve: ...)"
     parts=$(grep -m1 'iterative solver:' "$d/log" |
       sed -E 's/.*built in ([0-9.]+) s \(patch ([0-9.]+) s\), iterations ([0-9.]+) s .* its patch ([0-9.]+) s;.*/\1,\2,\3,\4/')
-    echo "$n,$ranks,$(echo "$row" | cut -d, -f5,7,8,10),$wall,$((kb / 1024)),$parts" | tee -a "$csv"
+    echo "$n,$ranks,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations wall_seconds),$wall,$((kb / 1024)),$parts" | tee -a "$csv"
   done
 done
 fi

@@ -40,12 +40,11 @@ end
         continue
       fi
       read -r wall kb < "$d.time"
-      row=$(tail -1 "$d/out/statistics.csv")
       # "built in A s (patch . s), iterations B s (...; this solve: operator products C s,
       # velocity V-cycles D s, multiplier V-cycles E s, particle block F s)"
       parts=$(grep -m1 'iterative solver:' "$d.log" | sed -E \
         's/.*built in ([0-9.]+) s .*, iterations ([0-9.]+) s .*operator products ([0-9.e+-]+) s, velocity V-cycles ([0-9.e+-]+) s, multiplier V-cycles ([0-9.e+-]+) s, particle block ([0-9.e+-]+) s\)/\1,\2,\3,\4,\5,\6/')
-      echo "$pair,$ranks,$(echo "$row" | cut -d, -f5,7,8),$wall,$((kb / 1024)),$(section 'assemble system' "$d.log"),$(section 'assemble residual' "$d.log"),$(section solve "$d.log"),$parts" | tee -a "$csv"
+      echo "$pair,$ranks,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations),$wall,$((kb / 1024)),$(section 'assemble system' "$d.log"),$(section 'assemble residual' "$d.log"),$(section solve "$d.log"),$parts" | tee -a "$csv"
     done
   done
 fi

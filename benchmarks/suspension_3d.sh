@@ -66,7 +66,9 @@ end
   /usr/bin/time -f "%M" -o "$work/$name.mem" \
     bash "$top/scripts/mpirun.sh" "$np" "$exe" "$work/$name.prm" > "$work/$name.log" 2>&1 ||
     { echo "$name stopped: $(grep -m1 -i 'error' "$work/$name.log")"; continue; }
-  echo "$name: $(tail -1 "$work/$name/statistics.csv" | cut -d, -f5,7,10) (unknowns, FGMRES, s)"
+  echo "$name: $(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    { r = $c["dofs"] "," $c["linear_iterations"] "," $c["wall_seconds"] } END { print r }' \
+    "$work/$name/statistics.csv") (unknowns, FGMRES, s)"
 done
 /usr/bin/python3 "$top/benchmarks/suspension_3d.py" "$work" "$top/doc/suspension_3d.csv"
 gnuplot <<GP

@@ -41,35 +41,6 @@ namespace fdparticle
      * symmetry plane drift off it. 12 adds about 430 points a split, to those cells only.
      */
     constexpr unsigned int max_generator_splits = 12;
-
-    /// ψ(x) = |x − X|² − R²: the ball is ψ < 0. Smooth everywhere (unlike the signed
-    /// distance, whose gradient is singular at the centre a small ball's cell contains).
-    template <int dim>
-    class BallLevelSet : public Function<dim>
-    {
-    public:
-      BallLevelSet(const Point<dim> &center, const double radius)
-        : center(center)
-        , radius(radius)
-      {}
-      double value(const Point<dim> &x, const unsigned int = 0) const override
-      {
-        return (x - center).norm_square() - radius * radius;
-      }
-      Tensor<1, dim> gradient(const Point<dim> &x, const unsigned int = 0) const override
-      {
-        return 2.0 * (x - center);
-      }
-      SymmetricTensor<2, dim> hessian(const Point<dim> &, const unsigned int = 0) const override
-      {
-        return 2.0 * unit_symmetric_tensor<dim>();
-      }
-
-    private:
-      const Point<dim> center;
-      const double     radius;
-    };
-
   } // namespace
 
   template <int dim>
@@ -172,7 +143,7 @@ namespace fdparticle
     double       gap = std::numeric_limits<double>::max();
     for (const unsigned int k : rule.balls)
       {
-        const double g = particles[k].offset(x).norm() - particles[k].radius;
+        const double g = particles[k].shape->surface_distance(particles[k].offset(x));
         if (g < gap)
           {
             gap = g;
@@ -246,7 +217,7 @@ namespace fdparticle
     for (const unsigned int k : balls)
       {
         const Particle<dim> &p = particles[k];
-        const auto images = p.centres_near(box, p.radius * (1 - Particle<dim>::surface_tolerance));
+        const auto images = p.centres_near(box, p.bounding_radius() * (1 - Particle<dim>::surface_tolerance));
         if (!images.empty())
           meeting.push_back(k);
         centres.insert(centres.end(), images.begin(), images.end());
@@ -275,7 +246,7 @@ namespace fdparticle
       {
         std::vector<Point<dim>> inside, outside;
         std::vector<double>     inside_weights, outside_weights;
-        append_ball_rules(box, centres[0], particles[meeting[0]].radius, inside,
+        append_shape_rules(box, centres[0], *particles[meeting[0]].shape, inside,
                           inside_weights, outside, outside_weights);
         points.insert(points.end(), inside.begin(), inside.end());
         weights.insert(weights.end(), inside_weights.begin(), inside_weights.end());
@@ -290,9 +261,9 @@ namespace fdparticle
   }
 
   template <int dim>
-  void CutCellQuadrature<dim>::append_ball_rules(const BoundingBox<dim> &box,
-                                                 const Point<dim> &       X,
-                                                 const double             radius,
+  void CutCellQuadrature<dim>::append_shape_rules(const BoundingBox<dim> &box,
+                                                  const Point<dim> &       X,
+                                                  const Shape<dim> &       shape,
                                                  std::vector<Point<dim>> &inside_points,
                                                  std::vector<double> &    inside_weights,
                                                  std::vector<Point<dim>> &outside_points,
@@ -311,9 +282,10 @@ namespace fdparticle
         far2 += std::pow(std::max(X[d] - box.lower_bound(d), box.upper_bound(d) - X[d]), 2);
         gap = std::max(gap, std::max(box.lower_bound(d) - X[d], X[d] - box.upper_bound(d)));
       }
-    if (far2 < radius * radius)
+    const double inscribed = shape.inscribed_radius();
+    if (far2 < inscribed * inscribed)
       {
-        // The box lies in the ball: the tensor rule is exact for the Q2 integrands.
+        // The box lies in the shape: the tensor rule is exact for the Q2 integrands.
         const QGauss<dim> gauss(level_set_order);
         for (unsigned int q = 0; q < gauss.size(); ++q)
           {
@@ -327,7 +299,7 @@ namespace fdparticle
       }
     if (gap >= min_height_slope * std::sqrt(far2))
       {
-        generator->generate(BallLevelSet<dim>(X, radius), box);
+        generator->generate(*shape.level_set(X), box);
         append(generator->get_inside_quadrature(), inside_points, inside_weights);
         append(generator->get_outside_quadrature(), outside_points, outside_weights);
         return;
@@ -365,7 +337,7 @@ namespace fdparticle
             lower[d] = pieces[d][index[d]].first;
             upper[d] = pieces[d][index[d]].second;
           }
-        append_ball_rules(BoundingBox<dim>(std::make_pair(lower, upper)), X, radius,
+        append_shape_rules(BoundingBox<dim>(std::make_pair(lower, upper)), X, shape,
                           inside_points, inside_weights, outside_points, outside_weights);
         unsigned int d = 0;
         while (d < dim && ++index[d] == pieces[d].size())

@@ -4,7 +4,7 @@
 
 #include <fdparticle/fem/introspection.h>
 #include <fdparticle/fem/navier_stokes_assembler.h>
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/rigid_body.h>
 
 #include <algorithm>

@@ -1,7 +1,12 @@
 #include <deal.II/base/mpi.h>
 
-#include <fdparticle/core/parameter_tools.h>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/fem/particle_refinement.h>
+#include <fdparticle/particles/sphere.h>
 
 namespace fdparticle
 {
@@ -63,9 +68,9 @@ namespace fdparticle
         double in_bands = 0;
         for (unsigned int k = 0; k < particles.size(); ++k)
           {
-            const double r = particles[k].radius / h;
-            in_bands += RigidBody<dim>::volume(r + half_width) -
-                        RigidBody<dim>::volume(std::max(0.0, r - half_width));
+            const double r = particles[k].bounding_radius() / h;
+            in_bands += Sphere<dim>(r + half_width).volume() -
+                        Sphere<dim>(std::max(0.0, r - half_width)).volume();
           }
         const double all = base * std::pow(2.0, dim * level);
         cells += (std::pow(2.0, dim) - 1) * (in_bands < all ? in_bands : all);
@@ -93,7 +98,7 @@ namespace fdparticle
     for (const unsigned int k : particles.meeting(reach))
       {
         const Particle<dim> &p = particles[k];
-        for (const Point<dim> &X : p.centres_near(box, p.radius + margin + tolerance))
+        for (const Point<dim> &X : p.centres_near(box, p.bounding_radius() + margin + tolerance))
           {
             // The box's farthest point from the centre: the far corner in every direction.
             double far2 = 0;
@@ -101,7 +106,7 @@ namespace fdparticle
               far2 += std::pow(std::max(std::abs(X[d] - box.lower_bound(d)),
                                         std::abs(X[d] - box.upper_bound(d))),
                                2);
-            if (std::sqrt(far2) >= p.radius - margin - tolerance)
+            if (std::sqrt(far2) >= p.shape->inscribed_radius() - margin - tolerance)
               return true;
           }
       }
@@ -153,6 +158,81 @@ namespace fdparticle
             n += (inside && outside);
           }
     return Utilities::MPI::sum(n, triangulation.get_communicator());
+  }
+
+  template <int dim>
+  std::vector<std::string> ParticleRefinement<dim>::resolution_warnings(
+    const parallel::distributed::Triangulation<dim> &triangulation,
+    const ParticleSet<dim> &                          particles) const
+  {
+    // The ball must span cells for λ to see it; below one cell per radius it is a blur.
+    std::vector<std::string> warnings;
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const Particle<dim> &P = particles[k];
+        double               h = std::numeric_limits<double>::max();
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              cell->center().distance(P.position) < P.bounding_radius() + cell->diameter())
+            h = std::min(h, cell->minimum_vertex_distance());
+        h = Utilities::MPI::min(h, triangulation.get_communicator());
+        const double R = P.shape->inscribed_radius();
+        if (R < h)
+          {
+            std::ostringstream w;
+            w << "Warning: particle " << k + 1 << " (radius " << R
+              << ") is smaller than the cells around it (h = " << h << ", d/h = "
+              << std::setprecision(3) << 2 * R / h
+              << "): it is under-resolved; refine with Geometry/Global refinements or "
+                 "Refinement/Particle refinement levels.";
+            warnings.push_back(w.str());
+          }
+      }
+    return warnings;
+  }
+
+  template <int dim>
+  void ParticleRefinement<dim>::check_scene(const Domain<dim> &     domain,
+                                            const ParticleSet<dim> &particles) const
+  {
+    const double cells = estimated_cells(domain, particles);
+    AssertThrow(cells <= Domain<dim>::max_cells,
+                ExcMessage("The mesh would have about " + ParameterTools::format_short(cells) +
+                           " cells (" + ParameterTools::format_short(domain.n_cells()) +
+                           " base cells, Refinement/Particle refinement levels = " +
+                           std::to_string(n_levels) +
+                           " around the particles); fdparticle refuses meshes of more than " +
+                           ParameterTools::format_short(Domain<dim>::max_cells) +
+                           " cells (0.1-1 TB of memory). Use fewer particle refinement "
+                           "levels, a narrower Refinement/Band width or a coarser base mesh."));
+    const double h = domain.base_cell_size() / std::pow(2.0, n_levels);
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      AssertThrow(particles[k].shape->inscribed_radius() >=
+                    ParticleSet<dim>::min_radius_in_cells * h,
+                  ExcMessage("Particle " + std::to_string(k + 1) + " (radius " +
+                             ParameterTools::format_short(particles[k].shape->inscribed_radius()) +
+                             ") is smaller than " +
+                             ParameterTools::format_short(ParticleSet<dim>::min_radius_in_cells) +
+                             " times the finest cell edge (h = " +
+                             ParameterTools::format_short(h) +
+                             "): the mesh cannot resolve it. Refine with Geometry/Global "
+                             "refinements or Refinement/Particle refinement levels."));
+  }
+
+  template <int dim>
+  void ParticleRefinement<dim>::declare_columns(StatisticsTable &statistics) const
+  {
+    statistics.declare("coarse_cut_cells");
+  }
+
+  template <int dim>
+  void ParticleRefinement<dim>::statistics(
+    const parallel::distributed::Triangulation<dim> &triangulation,
+    const ParticleSet<dim> &particles, const unsigned int base_level,
+    StatisticsTable &statistics) const
+  {
+    if (enabled())
+      statistics.set("coarse_cut_cells", coarse_cut_cells(triangulation, particles, base_level));
   }
 
   template class ParticleRefinement<2>;

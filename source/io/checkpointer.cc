@@ -2,7 +2,7 @@
 #include <deal.II/distributed/solution_transfer.h>
 
 #include <fdparticle/io/checkpointer.h>
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 
 #include <algorithm>
 #include <filesystem>

@@ -4,7 +4,8 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <fdparticle/io/output_writer.h>
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/particles/sphere.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/fem/introspection.h>
 
 #include <filesystem>
@@ -52,36 +53,6 @@ namespace fdparticle
       return a;
     }
 
-    /// One definition of each table: the header is the list's names, a row its values.
-    Columns statistics_columns(const StepStatistics &s)
-    {
-      return {{"step", double(s.step)},
-              {"time", s.time},
-              {"dt", s.dt},
-              {"cells", double(s.cells)},
-              {"dofs", double(s.dofs)},
-              {"nonlinear_iterations", double(s.nonlinear_iterations)},
-              {"linear_iterations", double(s.linear_iterations)},
-              {"inner_iterations", double(s.inner_iterations)},
-              {"residual", s.residual},
-              {"wall_seconds", s.wall_seconds},
-              {"initial_residual", s.initial_residual},
-              {"max_velocity", s.max_velocity},
-              {"hydrostatic_deviation", s.hydrostatic_deviation},
-              {"coarse_cut_cells", double(s.coarse_cut_cells)},
-              {"time_step_reductions", double(s.time_step_reductions)},
-              {"mean_vx", s.mean_velocity[0]},
-              {"mean_vy", s.mean_velocity[1]},
-              {"mean_vz", s.mean_velocity[2]},
-              {"contacts", double(s.contacts)},
-              {"min_gap", s.min_gap},
-              {"mean_particle_vx", s.mean_particle_velocity[0]},
-              {"mean_particle_vy", s.mean_particle_velocity[1]},
-              {"mean_particle_vz", s.mean_particle_velocity[2]},
-              {"jacobians", double(s.jacobians)},
-              {"solver_setups", double(s.solver_setups)}};
-    }
-
     /// One row of particles.csv per particle: in 2D z, the in-plane ω and torque are 0. The
     /// radius comes last: random and file particles differ in size.
     template <int dim>
@@ -95,7 +66,7 @@ namespace fdparticle
       for (const auto &[prefix, values] : vectors)
         for (unsigned int d = 0; d < 3; ++d)
           columns.emplace_back(prefix + "xyz"[d], values[d]);
-      columns.emplace_back("radius", P.radius);
+      columns.emplace_back("radius", P.bounding_radius());
       return columns;
     }
 
@@ -120,7 +91,7 @@ namespace fdparticle
       for (unsigned int d = 0; d < 3; ++d)
         rotation[d] = turn.angle() * turn.axis()[d];
       return {{"id", {double(P.id)}},
-              {"radius", {P.radius}},
+              {"radius", {P.bounding_radius()}},
               {"density", {P.density}},
               {"velocity", vector(P.velocity)},
               {"angular_velocity", axial(P.omega)},
@@ -164,9 +135,10 @@ namespace fdparticle
   } // namespace
 
   template <int dim>
-  void OutputWriter<dim>::initialize(const ParameterHandler &prm, const MPI_Comm communicator,
-                                     const bool resume, const unsigned int resume_step,
-                                     const double resume_time)
+  void OutputWriter<dim>::initialize(const ParameterHandler &prm,
+                                     const StatisticsTable & statistics,
+                                     const MPI_Comm communicator, const bool resume,
+                                     const unsigned int resume_step, const double resume_time)
   {
     comm = communicator;
     root = (Utilities::MPI::this_mpi_process(comm) == 0);
@@ -205,9 +177,13 @@ namespace fdparticle
         return;
       }
     particles_csv.open(particles_file);
-    write_header(particles_csv, particle_columns(0, Particle<dim>()));
+    Particle<dim> any;
+    any.shape = std::make_shared<const Sphere<dim>>(1.0);
+    write_header(particles_csv, particle_columns(0, any));
     statistics_csv.open(statistics_file);
-    write_header(statistics_csv, statistics_columns(StepStatistics()));
+    for (unsigned int i = 0; i < statistics.names().size(); ++i)
+      statistics_csv << (i > 0 ? "," : "") << statistics.names()[i];
+    statistics_csv << '\n';
   }
 
   template <int dim>
@@ -247,12 +223,14 @@ namespace fdparticle
   }
 
   template <int dim>
-  void OutputWriter<dim>::write_statistics_row(const StepStatistics &s)
+  void OutputWriter<dim>::write_statistics_row(const StatisticsTable &statistics)
   {
     if (!root)
       return;
     statistics_csv << std::setprecision(10);
-    write_row(statistics_csv, statistics_columns(s));
+    for (unsigned int i = 0; i < statistics.values().size(); ++i)
+      statistics_csv << (i > 0 ? "," : "") << statistics.values()[i];
+    statistics_csv << '\n';
     statistics_csv.flush();
   }
 

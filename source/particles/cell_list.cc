@@ -12,7 +12,7 @@ namespace fdparticle
   } // namespace
 
   template <int dim>
-  CellList<dim>::CellList(const Domain<dim> &domain, const double width)
+  CellList<dim>::CellList(const Box<dim> &domain, const double width)
     : lower(domain.lower_corner())
     , length(domain.upper_corner() - domain.lower_corner())
     , period(domain.period())
@@ -53,7 +53,7 @@ namespace fdparticle
   template <int dim>
   Tensor<1, dim> CellList<dim>::offset(const Point<dim> &a, const Point<dim> &b) const
   {
-    return Domain<dim>::nearest_image(a - b, period);
+    return Box<dim>::nearest_image(a - b, period);
   }
 
   template class CellList<2>;

@@ -1,4 +1,4 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/collisions.h>
 
 #include <algorithm>
@@ -75,7 +75,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  void Collisions<dim>::initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
+  void Collisions<dim>::initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
                                    const ParticleSet<dim> &particles,
                                    const double finest_cell_size)
   {
@@ -168,7 +168,7 @@ namespace fdparticle
       for (unsigned int k = 0; k < particles.size(); ++k)
         {
           x[k] = (c != nullptr ? particles[k].position_after_step(*c) : particles[k].position);
-          r[k] = particles[k].radius;
+          r[k] = particles[k].bounding_radius();
         }
     }
   } // namespace
@@ -206,22 +206,31 @@ namespace fdparticle
   }
 
   template <int dim>
-  void Collisions<dim>::statistics(const ParticleSet<dim> &particles, unsigned int &n_contacts,
-                                   double &min_gap) const
+  void Collisions<dim>::declare_columns(StatisticsTable &statistics) const
+  {
+    statistics.declare("contacts");
+    statistics.declare("min_gap");
+  }
+
+  template <int dim>
+  void Collisions<dim>::statistics(const ParticleSet<dim> &particles,
+                                   StatisticsTable &       statistics) const
   {
     Assert(search, ExcMessage("Collisions::initialize was not called."));
-    n_contacts = 0;
+    unsigned int n_contacts = 0;
     std::vector<Point<dim>> x;
     std::vector<double>     r;
     centres_and_radii<dim>(particles, nullptr, x, r);
     const double diameter = (r.empty() ? 0.0 : 2 * *std::max_element(r.begin(), r.end()));
-    min_gap               = diameter;
+    double       min_gap  = diameter;
     for (const auto &pair : search->pairs(x, r, diameter))
       {
         min_gap = std::min(min_gap, pair.gap);
         if (pair.gap < range)
           ++n_contacts;
       }
+    statistics.set("contacts", n_contacts);
+    statistics.set("min_gap", min_gap);
   }
 
   template class Collisions<2>;

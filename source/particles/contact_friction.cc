@@ -46,19 +46,19 @@ namespace fdparticle
         const Tensor<1, dim> offset   = X_A - B.position_after_step(c) + partner.shift;
         const double         distance = offset.norm();
         n   = offset / distance;
-        gap = distance - A.radius - B.radius;
+        gap = distance - A.bounding_radius() - B.bounding_radius();
         // The contact point is the middle of the gap: (R_j + g/2) n from X_j.
-        sliding = -B.velocity - RigidBody<dim>::cross(B.omega, (B.radius + gap / 2) * n);
+        sliding = -B.velocity - RigidBody<dim>::cross(B.omega, (B.bounding_radius() + gap / 2) * n);
       }
     else
       {
         n       = partner.normal;
-        gap     = n * X_A - partner.plane - A.radius;
+        gap     = n * X_A - partner.plane - A.bounding_radius();
         sliding = -partner.wall_velocity;
       }
     // The contact point is the middle of the gap: −(R_i + g/2) n from X_i. One point for
     // both balls, so a pair's angular momentum is conserved.
-    const Tensor<1, dim> arm_i = -(A.radius + gap / 2) * n;
+    const Tensor<1, dim> arm_i = -(A.bounding_radius() + gap / 2) * n;
     const double F_n = std::max(normal_force(gap, (A.velocity + sliding) * n), 0.0);
     sliding += A.velocity + RigidBody<dim>::cross(A.omega, arm_i);
     const Tensor<1, dim> v_t = sliding - (sliding * n) * n;
@@ -73,7 +73,7 @@ namespace fdparticle
     if (is_pair)
       {
         const Tensor<1, 3> T_j =
-          RigidBody<dim>::moment((particles[partner.j].radius + gap / 2) * n, -F);
+          RigidBody<dim>::moment((particles[partner.j].bounding_radius() + gap / 2) * n, -F);
         for (unsigned int d = 0; d < dim; ++d)
           result[n_unknowns + d] = -F[d];
         for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)
@@ -97,7 +97,7 @@ namespace fdparticle
 
   template <int dim>
   void ContactFriction<dim>::add_wall(ParticleSet<dim> &particles, const unsigned int i,
-                                      const typename Domain<dim>::WallGap &wall,
+                                      const typename Box<dim>::WallGap &wall,
                                       const NormalForce &normal_force,
                                       const std::array<double, 3> &c, Eigen::VectorXd &r_p,
                                       Eigen::SparseMatrix<double> *D) const
@@ -106,7 +106,7 @@ namespace fdparticle
     partner.normal        = wall.normal;
     partner.wall_velocity = wall.velocity;
     partner.plane =
-      wall.normal * particles[i].position_after_step(c) - particles[i].radius - wall.gap;
+      wall.normal * particles[i].position_after_step(c) - particles[i].bounding_radius() - wall.gap;
     add(particles, i, partner, normal_force, c, r_p, D);
   }
 

@@ -1,4 +1,4 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/lubrication.h>
 
 #include <cmath>
@@ -49,7 +49,8 @@ namespace fdparticle
   }
 
   template <int dim>
-  void Lubrication<dim>::initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
+  void Lubrication<dim>::initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
+                                    const ParticleSet<dim> & /*particles*/,
                                     const double finest_cell_size)
   {
     this->domain = domain;
@@ -118,7 +119,7 @@ namespace fdparticle
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         x[k] = particles[k].position_after_step(c);
-        r[k] = particles[k].radius;
+        r[k] = particles[k].bounding_radius();
         for (const auto &wall : domain.walls_near(x[k], r[k], resolved_gap))
           {
             const auto contact = NormalContact<dim>::wall(particles, k, wall.normal, wall.gap);

@@ -6,7 +6,7 @@
 namespace fdparticle
 {
   template <int dim>
-  PairSearch<dim>::PairSearch(const Domain<dim> &domain)
+  PairSearch<dim>::PairSearch(const Box<dim> &domain)
     : domain(domain)
   {}
 

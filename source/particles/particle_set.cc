@@ -1,8 +1,9 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/pair_search.h>
 #include <fdparticle/particles/particle_file.h>
 #include <fdparticle/particles/random_packing.h>
 #include <fdparticle/particles/particle_set.h>
+#include <fdparticle/particles/sphere.h>
 
 #include <algorithm>
 #include <iomanip>
@@ -47,14 +48,15 @@ namespace fdparticle
       using namespace ParameterTools;
       Particle<dim> p;
       p.position = Point<dim>(to_tensor<dim>(fields[0], name + " centre"));
-      p.radius = to_double(fields[1], name + " radius");
+      const double radius = to_double(fields[1], name + " radius");
       p.density = to_double(fields[2], name + " density");
-      AssertThrow(p.radius > 0, ExcMessage("Parameter '" + name +
+      AssertThrow(radius > 0, ExcMessage("Parameter '" + name +
                                            "': the radius must be positive, got " +
                                            fields[1] + "."));
       AssertThrow(p.density > 0, ExcMessage("Parameter '" + name +
                                             "': the density must be positive, got " +
                                             fields[2] + "."));
+      p.shape = std::make_shared<const Sphere<dim>>(radius);
       if (fields.size() >= 4)
         {
           const std::string &motion = fields[3];
@@ -131,7 +133,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  void ParticleSet<dim>::parse_parameters(ParameterHandler &prm, const Domain<dim> &domain,
+  void ParticleSet<dim>::parse_parameters(ParameterHandler &prm, const Box<dim> &domain,
                                           const MPI_Comm comm)
   {
     using namespace ParameterTools;
@@ -172,12 +174,12 @@ namespace fdparticle
     // Random balls avoid the listed ones; they are checked with them below.
     std::vector<typename RandomPacking<dim>::Ball> listed;
     for (const Particle<dim> &p : particles)
-      listed.push_back({p.position, p.radius});
+      listed.push_back({p.position, p.bounding_radius()});
     for (const auto &ball : random.place(listed))
       {
         Particle<dim> p;
         p.position = p.position_old = p.geometry_center = ball.center;
-        p.radius = ball.radius;
+        p.shape = std::make_shared<const Sphere<dim>>(ball.radius);
         p.density = random.density();
         particles.push_back(p);
       }
@@ -207,7 +209,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  void ParticleSet<dim>::check_positions(const Domain<dim> &domain, const double time) const
+  void ParticleSet<dim>::check_positions(const Box<dim> &domain, const double time) const
   {
     const std::string when = (time == 0.0 ? "" : " at t = " + std::to_string(time));
     // The centre must lie in the box (on a periodic face it may). In a wall-bounded
@@ -221,12 +223,12 @@ namespace fdparticle
           const std::string what = "Particle " + std::to_string(p.id + 1) + " (centre " +
                                    std::string(1, "xyz"[d]) + " = " +
                                    std::to_string(p.position[d]) +
-                                   ", radius " + std::to_string(p.radius) + ")";
+                                   ", radius " + std::to_string(p.bounding_radius()) + ")";
           if (domain.is_periodic(d))
             {
               AssertThrow(time > 0.0 || (p.position[d] >= lower && p.position[d] <= upper),
                           ExcMessage(what + " lies outside the box."));
-              AssertThrow(2 * p.radius < upper - lower,
+              AssertThrow(2 * p.bounding_radius() < upper - lower,
                           ExcMessage(what + " is wider than the periodic box in " +
                                      std::string(1, "xyz"[d]) +
                                      " and would overlap its own periodic image."));
@@ -234,7 +236,8 @@ namespace fdparticle
             }
           AssertThrow(time > 0.0 || (p.position[d] > lower && p.position[d] < upper),
                       ExcMessage(what + " lies outside the box."));
-          AssertThrow(p.position[d] - p.radius > lower && p.position[d] + p.radius < upper,
+          AssertThrow(p.position[d] - p.bounding_radius() > lower &&
+                        p.position[d] + p.bounding_radius() < upper,
                       ExcMessage(what + " overlaps a wall of the box" + when +
                                  (time == 0.0 ? "." : " (see subsection Wall repulsion).")));
         }
@@ -243,7 +246,7 @@ namespace fdparticle
     for (const Particle<dim> &p : particles)
       {
         x.push_back(p.position);
-        r.push_back(p.radius);
+        r.push_back(p.bounding_radius());
       }
     const auto overlaps = PairSearch<dim>(domain).pairs(x, r, 0.0);
     AssertThrow(overlaps.empty(),
@@ -308,7 +311,7 @@ namespace fdparticle
     revision = ++last_revision;
     largest_radius = 0;
     for (const Particle<dim> &p : particles)
-      largest_radius = std::max(largest_radius, p.radius);
+      largest_radius = std::max(largest_radius, p.bounding_radius());
     // Without balls any width does: one bin across the box.
     index.emplace(domain, largest_radius > 0 ?
                             2 * largest_radius :
@@ -450,6 +453,18 @@ namespace fdparticle
 
   template struct Particle<2>;
   template struct Particle<3>;
+  template <int dim>
+  void ParticleSet<dim>::declare_columns(StatisticsTable &statistics) const
+  {
+    statistics.declare_vector("mean_particle_v");
+  }
+
+  template <int dim>
+  void ParticleSet<dim>::statistics(StatisticsTable &statistics) const
+  {
+    statistics.set_vector("mean_particle_v", mean_free_velocity());
+  }
+
   template class ParticleSet<2>;
   template class ParticleSet<3>;
 } // namespace fdparticle

@@ -1,7 +1,7 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/cell_list.h>
 #include <fdparticle/particles/random_packing.h>
-#include <fdparticle/particles/rigid_body.h>
+#include <fdparticle/particles/sphere.h>
 
 #include <algorithm>
 #include <random>
@@ -34,7 +34,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  void RandomPacking<dim>::parse_parameters(ParameterHandler &prm, const Domain<dim> &box)
+  void RandomPacking<dim>::parse_parameters(ParameterHandler &prm, const Box<dim> &box)
   {
     using namespace ParameterTools;
     domain = box;
@@ -132,7 +132,7 @@ namespace fdparticle
                 list.insert(all.size(), x);
                 all.push_back(Ball{x, r});
                 balls.push_back(Ball{x, r});
-                placed_volume += RigidBody<dim>::volume(r);
+                placed_volume += Sphere<dim>(r).volume();
                 placed = true;
               }
           }

@@ -69,19 +69,6 @@ namespace fdparticle
   }
 
   template <int dim>
-  double RigidBody<dim>::volume(const double radius)
-  {
-    return (dim == 2 ? numbers::PI * radius * radius :
-                       4.0 / 3.0 * numbers::PI * radius * radius * radius);
-  }
-
-  template <int dim>
-  double RigidBody<dim>::inertia(const double radius)
-  {
-    return (dim == 2 ? 0.5 : 0.4) * volume(radius) * radius * radius;
-  }
-
-  template <int dim>
   Tensor<1, 3> RigidBody<dim>::curl(const Tensor<2, dim> &G)
   {
     Tensor<1, 3> c;

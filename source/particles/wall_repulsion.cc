@@ -1,4 +1,4 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/contact_friction.h>
 #include <fdparticle/particles/wall_repulsion.h>
 
@@ -74,7 +74,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  void WallRepulsion<dim>::initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
+  void WallRepulsion<dim>::initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
                                       const ParticleSet<dim> &particles,
                                       const double finest_cell_size)
   {
@@ -141,7 +141,7 @@ namespace fdparticle
         if (P.first_unknown == numbers::invalid_unsigned_int)
           continue;
         const RepulsionLaw law{rho, stiffness[k]};
-        for (const auto &wall : domain.walls_near(P.position_after_step(c), P.radius, rho))
+        for (const auto &wall : domain.walls_near(P.position_after_step(c), P.bounding_radius(), rho))
           {
             const auto contact = NormalContact<dim>::wall(particles, k, wall.normal, wall.gap);
             if (!spring_dashpot)

@@ -1,4 +1,4 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/solvers/linear_solver.h>
 #include <fdparticle/solvers/newton_solver.h>
 

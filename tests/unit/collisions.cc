@@ -9,13 +9,14 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <fdparticle/core/fluid.h>
+#include <fdparticle/base/fluid.h>
 #include <fdparticle/core/simulation.h>
 #include <fdparticle/fem/domain.h>
 #include <fdparticle/particles/collisions.h>
 #include <fdparticle/particles/lubrication.h>
 #include <fdparticle/particles/pair_search.h>
 #include <fdparticle/particles/particle_set.h>
+#include <fdparticle/particles/sphere.h>
 #include <fdparticle/particles/wall_repulsion.h>
 
 #include "unit_check.h"
@@ -128,7 +129,7 @@ namespace
     Lubrication<dim>  lubrication;
     parse(prm, periodic, particles, domain, fluid, set, collisions, model, lubrication_prm);
     lubrication.parse_parameters(prm);
-    lubrication.initialize(domain, fluid, 0.01);
+    lubrication.initialize(domain, fluid, set, 0.01);
     // A BDF2 step of 0.01 with a history, and velocities that turn the pair a little.
     const std::array<double, 3> c{{1.5 / 0.01, -2 / 0.01, 0.5 / 0.01}};
     std::mt19937                           random(5 + dim);
@@ -215,8 +216,8 @@ namespace
             "\n  set Restitution coefficient = " + std::to_string(restitution) +
             "\n  set Friction coefficient = " + std::to_string(friction) + "\n");
     Bounce result;
-    result.mass    = density * RigidBody<dim>::volume(radius);
-    result.inertia = density * RigidBody<dim>::inertia(radius);
+    result.mass    = density * Sphere<dim>(radius).volume();
+    result.inertia = density * Sphere<dim>(radius).inertia();
     const double log_e = std::log(restitution);
     const double t_c   = std::sqrt(result.mass / 2 / stiffness) *
                        std::sqrt(numbers::PI * numbers::PI + log_e * log_e);
@@ -376,8 +377,8 @@ namespace
     walls.parse_parameters(prm);
     walls.initialize(domain, fluid, set, range);
     FloorRun result;
-    result.mass    = density * RigidBody<dim>::volume(radius);
-    result.inertia = density * RigidBody<dim>::inertia(radius);
+    result.mass    = density * Sphere<dim>(radius).volume();
+    result.inertia = density * Sphere<dim>(radius).inertia();
     Particle<dim> &P = set[0];
     P.velocity = P.velocity_old = P.velocity_old2 = V0;
     P.position_old = P.position - dt * V0;

@@ -18,7 +18,7 @@
 
 #include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/fem/domain.h>
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/core/simulation.h>
 

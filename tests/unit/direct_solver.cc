@@ -18,6 +18,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <fdparticle/solvers/direct_solver.h>
+#include <fdparticle/solvers/linear_solver_factory.h>
 #include <fdparticle/solvers/newton_system.h>
 
 #include "unit_check.h"
@@ -163,14 +164,14 @@ namespace
                              (solver_name == "Amesos_Mumps" ? " (" + ordering + ")" : "") +
                              ", m = " + std::to_string(m);
     ParameterHandler prm;
-    LinearSolver::declare_parameters(prm);
+    declare_linear_solver_parameters(prm);
     prm.parse_input_from_string("subsection Solver\n"
                                 "  set Linear solver = direct\n"
                                 "  set Direct solver = " + solver_name + "\n"
                                 "  set MUMPS ordering = " + ordering + "\n"
                                 "end\n");
     NewtonSystem s; // declared first: the solver refers to its matrix until destroyed
-    const std::unique_ptr<LinearSolver> created = LinearSolver::create(prm, n + m);
+    const std::unique_ptr<LinearSolver> created = create_linear_solver(prm, n + m);
     auto *solver = dynamic_cast<DirectSolver *>(created.get());
     check(solver != nullptr, what + ": 'Linear solver' selects the direct solver");
     if (!solver)
@@ -202,13 +203,13 @@ namespace
   void check_auto_choice()
   {
     ParameterHandler prm;
-    LinearSolver::declare_parameters(prm);
+    declare_linear_solver_parameters(prm);
     prm.parse_input_from_string("subsection Solver\n"
                                 "  set Linear solver = auto\n"
                                 "  set Iterative solver from = 1000\n"
                                 "end\n");
-    check(!LinearSolver::create(prm, 999)->iterative(), "auto: 999 unknowns go to the direct solver");
-    check(LinearSolver::create(prm, 1000)->iterative(),
+    check(!create_linear_solver(prm, 999)->iterative(), "auto: 999 unknowns go to the direct solver");
+    check(create_linear_solver(prm, 1000)->iterative(),
           "auto: 1000 unknowns go to the iterative solver");
   }
 } // namespace

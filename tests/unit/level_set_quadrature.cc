@@ -20,6 +20,7 @@
 
 #include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/particles/sphere.h>
 
 #include "unit_check.h"
 
@@ -141,7 +142,7 @@ namespace
             }
       }
     check(n_generated > 0, "the ball cuts cells", "");
-    const double V = RigidBody<dim>::volume(R);
+    const double V = Sphere<dim>(R).volume();
     // ∫|r|² = d/(d+2) V R²; about z: 2D the same, 3D 2/5 V R².
     const double second = double(dim) / (dim + 2) * V * R * R;
     const double axial = (dim == 2 ? second : 0.4 * V * R * R);
@@ -182,7 +183,7 @@ namespace
     check(most < bound, std::to_string(dim) + "D ball R = h/10 next to a vertex: " +
                           std::to_string(most) + " points in the largest cut-cell rule < " +
                           std::to_string(bound));
-    const double error = std::abs(volume / RigidBody<dim>::volume(R) - 1);
+    const double error = std::abs(volume / Sphere<dim>(R).volume() - 1);
     check(error < 1e-6, std::to_string(dim) + "D ball R = h/10 next to a vertex: volume "
                         "relative error " + sci(error) + " < 1e-06");
   }
@@ -226,7 +227,7 @@ namespace
     check(shared > 0, name + std::to_string(shared) + " cells meet both balls");
     for (const unsigned int k : {0, 1})
       {
-        const double error = std::abs(volume[k] / RigidBody<dim>::volume(R) - 1);
+        const double error = std::abs(volume[k] / Sphere<dim>(R).volume() - 1);
         check(error < 1e-6, name + "ball " + std::to_string(k) + " volume relative error " +
                               sci(error) + " < 1e-06");
       }
@@ -410,7 +411,7 @@ namespace
         // the generator's default 4 splits.
         check(worst < 1e-7, name + "mirror-image cells' particle fractions differ by at most " +
                               sci(worst) + " < 1e-07");
-        const double error = std::abs(volume / RigidBody<dim>::volume(R) - 1);
+        const double error = std::abs(volume / Sphere<dim>(R).volume() - 1);
         check(error < 1e-6, name + "volume relative error " + sci(error) + " < 1e-06");
       }
   }

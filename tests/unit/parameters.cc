@@ -7,8 +7,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <fdparticle/fem/domain.h>
-#include <fdparticle/core/fluid.h>
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/fluid.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/core/simulation.h>
 
@@ -186,12 +186,12 @@ end
     if (ps.size() == 2)
       {
         check_close(Tensor<1, 2>(ps[0].position), Tensor<1, 2>({0, 1}), "particle 1 centre");
-        check_close(ps[0].radius, 0.25, "particle 1 radius");
+        check_close(ps[0].bounding_radius(), 0.25, "particle 1 radius");
         check_close(ps[0].density, 1200.0, "particle 1 density");
         check(ps[0].motion == ParticleMotion::free, "particle 1 free (default)");
         check(ps[0].first_unknown == 0, "particle 1 unknowns start at 0");
         check_close(Tensor<1, 2>(ps[1].position), Tensor<1, 2>({0.5, 3}), "particle 2 centre");
-        check_close(ps[1].radius, 0.125, "particle 2 radius");
+        check_close(ps[1].bounding_radius(), 0.125, "particle 2 radius");
         check_close(ps[1].density, 800.0, "particle 2 density");
         check(ps[1].motion == ParticleMotion::fixed, "particle 2 fixed");
         check(ps[1].first_unknown == numbers::invalid_unsigned_int, "particle 2 has no unknowns");
@@ -232,7 +232,7 @@ end
         check_close(Tensor<1, 3>(ps[0].position), Tensor<1, 3>({0.5, 1, 1.5}), "particle 1 centre");
         check_close(Tensor<1, 3>(ps[1].position), Tensor<1, 3>({0.5, 0.5, 0.5}),
                     "particle 2 centre");
-        check_close(ps[1].radius, 0.1, "particle 2 radius");
+        check_close(ps[1].bounding_radius(), 0.1, "particle 2 radius");
         check(ps[1].motion == ParticleMotion::free, "particle 2 'free'");
         check(ps[0].first_unknown == 0 && ps[1].first_unknown == 6, "unknown offsets 0 and 6");
       }

@@ -11,7 +11,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
 #include <fdparticle/fem/domain.h>
 #include <fdparticle/particles/particle_set.h>
@@ -89,9 +89,9 @@ namespace
     if (!error.empty())
       return;
     check(set.size() == 4, "the list's particle, then the file's three");
-    check_close(set[0].radius, 0.05, 0, "the list's particle comes first");
+    check_close(set[0].bounding_radius(), 0.05, 0, "the list's particle comes first");
     check_close(set[1].position[1], 0.4, 0, "line 4: y");
-    check_close(set[2].radius, 0.12, 0, "line 5: radius");
+    check_close(set[2].bounding_radius(), 0.12, 0, "line 5: radius");
     check_close(set[2].density, 3.0, 0, "line 5: density");
     check(set[1].motion == ParticleMotion::free && set[2].motion == ParticleMotion::fixed &&
             set[3].motion == ParticleMotion::prescribed,
@@ -133,7 +133,7 @@ namespace
       for (unsigned int j = i + 1; j < set.size(); ++j)
         smallest = std::min(smallest, nearest_image_distance(set[i].position, set[j].position,
                                                              domain) -
-                                        set[i].radius - set[j].radius);
+                                        set[i].bounding_radius() - set[j].bounding_radius());
     return smallest;
   }
 
@@ -167,9 +167,9 @@ namespace
     for (unsigned int k = 1; k < set.size(); ++k)
       {
         const Particle<dim> &p = set[k];
-        radii = radii && p.radius >= r_min && p.radius <= r_max && p.density == 1.5;
+        radii = radii && p.bounding_radius() >= r_min && p.bounding_radius() <= r_max && p.density == 1.5;
         free = free && p.motion == ParticleMotion::free;
-        in_sub_box = in_sub_box && p.position[1] - p.radius >= 0.5;
+        in_sub_box = in_sub_box && p.position[1] - p.bounding_radius() >= 0.5;
         for (unsigned int d = 0; d < dim; ++d)
           {
             const double lower = domain.lower_corner()[d], upper = domain.upper_corner()[d];
@@ -177,11 +177,11 @@ namespace
             if (domain.is_periodic(d))
               {
                 off_walls = off_walls && p.position[d] >= lower && p.position[d] < upper;
-                n_crossing += (p.position[d] - p.radius < lower || p.position[d] + p.radius > upper);
+                n_crossing += (p.position[d] - p.bounding_radius() < lower || p.position[d] + p.bounding_radius() > upper);
               }
             else
-              off_walls = off_walls && p.position[d] - p.radius >= lower + gap &&
-                          p.position[d] + p.radius <= upper - gap;
+              off_walls = off_walls && p.position[d] - p.bounding_radius() >= lower + gap &&
+                          p.position[d] + p.bounding_radius() <= upper - gap;
           }
       }
     check(radii, "radii in [min, max], density as given");
@@ -221,7 +221,7 @@ namespace
         const BoundingBox<dim>    box({a, b});
         std::vector<unsigned int> expected;
         for (unsigned int k = 0; k < set.size(); ++k)
-          if (set[k].distance_to(box) < set[k].radius)
+          if (set[k].distance_to(box) < set[k].bounding_radius())
             expected.push_back(k);
         same_meeting = same_meeting && set.meeting(box) == expected;
         n_met += expected.size();

@@ -1,4 +1,5 @@
-// Unit test of fdparticle::RigidBody<2> and RigidBody<3> (include/fdparticle/particles/rigid_body.h).
+// Unit test of fdparticle::RigidBody<2> and RigidBody<3> (include/fdparticle/particles/rigid_body.h)
+// and of the Sphere shape (include/fdparticle/particles/sphere.h).
 //
 // Every expected value is computed here independently of the library: cross products by
 // the Levi-Civita symbol, gradients by central differences of that cross product, the
@@ -9,6 +10,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <fdparticle/particles/rigid_body.h>
+#include <fdparticle/particles/sphere.h>
 
 #include "unit_check.h"
 
@@ -166,22 +168,52 @@ namespace
     check_close(RB::moment(r, RB::cross(axis_perp, r)), r.norm_square() * axis_perp, 1e-13,
                 "moment(r, cross(w, r)) == |r|^2 w for w perpendicular to r");
 
-    // volume and inertia
+    // volume and inertia of the sphere (disk)
     for (const double R : {0.1, 1.0, 2.5})
       {
         const double vol = (dim == 2 ? numbers::PI * R * R : 4.0 / 3.0 * numbers::PI * R * R * R);
         const double J = (dim == 2 ? 0.5 * vol * R * R : 0.4 * vol * R * R);
-        check_close(RB::volume(R), vol, 1e-14 * vol,
+        check_close(Sphere<dim>(R).volume(), vol, 1e-14 * vol,
                     std::string("volume(") + std::to_string(R) + ") == " +
                       (dim == 2 ? "pi R^2" : "4/3 pi R^3"));
-        check_close(RB::inertia(R), J, 1e-14 * J,
+        check_close(Sphere<dim>(R).inertia(), J, 1e-14 * J,
                     std::string("inertia(") + std::to_string(R) + ") == " +
                       (dim == 2 ? "(1/2)|P| R^2" : "(2/5)|P| R^2"));
       }
     // Independent cross-check: disk J = pi R^4 / 2, ball J = 8 pi R^5 / 15.
-    check_close(RB::inertia(1.3),
+    check_close(Sphere<dim>(1.3).inertia(),
                 dim == 2 ? numbers::PI * std::pow(1.3, 4) / 2 : 8 * numbers::PI * std::pow(1.3, 5) / 15,
                 1e-12, "inertia(1.3) == pi R^4/2 (disk) or 8 pi R^5/15 (ball)");
+
+    // The sphere's geometric queries, against |r| and R.
+    const double      R = 0.7;
+    const Sphere<dim> ball(R);
+    check(ball.bounding_radius() == R && ball.inscribed_radius() == R,
+          "bounding and inscribed radius are R");
+    Tensor<1, dim> e;
+    e[0] = 0.6;
+    e[dim - 1] += 0.8; // |e| = 1 in 2D and 3D
+    check(ball.contains(0.999 * R * e) && !ball.contains(1.001 * R * e),
+          "contains: just inside yes, just outside no");
+    check(ball.contains((1 + 1e-12) * R * e) && !ball.contains((1 + 1e-8) * R * e),
+          "contains: within the surface tolerance counts as inside, beyond it not");
+    check_close(ball.surface_distance(2 * R * e), R, 1e-14, "surface distance outside");
+    check_close(ball.surface_distance(0.25 * R * e), -0.75 * R, 1e-14, "surface distance inside");
+    const Point<dim> C = Point<dim>() + 0.3 * e;
+    const auto       psi = ball.level_set(C);
+    check_close(psi->value(C + R * e), 0, 1e-14, "level set zero on the surface");
+    check(psi->value(C) < 0 && psi->value(C + 1.5 * R * e) > 0,
+          "level set negative inside, positive outside");
+    const double h = 1e-6;
+    const Point<dim> x = C + 0.4 * e;
+    Tensor<1, dim> fd;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        Tensor<1, dim> dx;
+        dx[d] = h;
+        fd[d] = (psi->value(x + dx) - psi->value(x - dx)) / (2 * h);
+      }
+    check_close(psi->gradient(x), fd, 1e-8, "level-set gradient = central differences");
   }
 
   template <int dim>

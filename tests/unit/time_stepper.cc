@@ -1,4 +1,4 @@
-// Unit test of fdparticle::TimeStepper (include/fdparticle/core/time_stepper.h), set up through
+// Unit test of fdparticle::TimeStepper (include/fdparticle/base/time_stepper.h), set up through
 // a ParameterHandler exactly as the program does (subsection Time).
 //
 // Independent references: BDF1 = (1, -1, 0)/dt, constant-step BDF2 = (3/2, -2, 1/2)/dt,
@@ -9,8 +9,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
-#include <fdparticle/core/parameter_tools.h>
-#include <fdparticle/core/time_stepper.h>
+#include <fdparticle/base/parameter_tools.h>
+#include <fdparticle/base/time_stepper.h>
 
 #include "unit_check.h"
 

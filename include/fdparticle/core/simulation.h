@@ -14,21 +14,18 @@
 #include <fdparticle/io/checkpointer.h>
 #include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/fem/domain.h>
-#include <fdparticle/core/fluid.h>
+#include <fdparticle/base/fluid.h>
 #include <fdparticle/fem/navier_stokes_assembler.h>
 #include <fdparticle/io/output_writer.h>
 #include <fdparticle/fem/particle_refinement.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/io/smoothness_meter.h>
-#include <fdparticle/core/time_stepper.h>
-#include <fdparticle/particles/collisions.h>
-#include <fdparticle/particles/lubrication.h>
-#include <fdparticle/particles/wall_repulsion.h>
-#include <fdparticle/solvers/linear_solver.h>
+#include <fdparticle/base/time_stepper.h>
+#include <fdparticle/particles/particle_interactions.h>
+#include <fdparticle/solvers/linear_solver_factory.h>
 #include <fdparticle/solvers/newton_solver.h>
 #include <fdparticle/solvers/newton_system.h>
 
-#include <deque>
 #include <memory>
 
 namespace fdparticle
@@ -65,14 +62,10 @@ namespace fdparticle
     void   resume();
     void   write_checkpoint();
     /// Advance by one accepted step, retrying with smaller steps when Newton fails.
-    void   do_time_step(StepStatistics &stats);
+    void   do_time_step();
     /// Where the residual is largest, in words (for failure messages).
     std::string describe_residual() const;
-    /// Warn about particles smaller than the cells they sit in.
-    void   check_resolution();
     void   setup_dofs();
-    /// The block layout of the system (NewtonSystem::Blocks) for the new DoFs.
-    void   setup_blocks();
     /// Refine around the particles (with transfer of the solution and its history).
     void   adapt_mesh(const bool transfer);
     /// Execute the flagged refinement and the weighted partition, with transfer of the
@@ -88,23 +81,18 @@ namespace fdparticle
     void setup_matrix(const typename NavierStokesAssembler<dim>::ParticleSupport &support);
     void   set_initial_pressure();
     /// Newton's method for the step prepared by do_time_step(); on success the particle
-    /// forces are updated and stats gets the iterations and residuals.
-    NewtonSolver::Result solve_time_step(StepStatistics &stats);
+    /// forces are updated and the statistics get the iterations and residuals.
+    NewtonSolver::Result solve_time_step();
     void   update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals);
     double max_velocity() const;
-    /// hydrostatic_deviation and mean_velocity of stats, in one pass over the cells.
-    void   field_statistics(StepStatistics &stats) const;
+    /// The columns of statistics.csv: Simulation's own (the step, its solve, the fields),
+    /// then those of the classes that compute the others.
+    void   declare_statistics();
+    /// hydrostatic_deviation and mean_v of the statistics, in one pass over the cells.
+    void   field_statistics();
     void   write_output(const bool fields);
     /// The time loop of run(), from the start (or the checkpoint) to End time.
     void   run_time_loop();
-    /// The screen line of a step: progress, Newton, size, and the time left, estimated
-    /// from the simulated time per wall second of the recent steps.
-    void   print_step_line(const StepStatistics &                        stats,
-                           const std::deque<std::pair<double, double>> &recent) const;
-
-    /// Steps the estimate of the time left averages over: enough to smooth the noise of
-    /// single steps, few enough to follow a change of the time step or of the mesh.
-    static constexpr std::size_t progress_window = 10;
     /// Load of the most loaded rank over the mean (cell weights of Quadrature/Cut cell
     /// cost) above which rebalance() repartitions. A fresh weighted partition is balanced
     /// to a cell or two; a repartition costs a mesh change with the transfer of three
@@ -124,12 +112,11 @@ namespace fdparticle
     TimeStepper            time;
     CutCellQuadrature<dim> quadrature;
     OutputWriter<dim>      output;
+    StatisticsTable        statistics;
     ParticleRefinement<dim> refinement;
     SmoothnessMeter<dim>   smoothness;
     Checkpointer<dim>      checkpointer;
-    WallRepulsion<dim>     repulsion;
-    Collisions<dim>        collisions;
-    Lubrication<dim>       lubrication;
+    ParticleInteractions<dim> interactions;
     unsigned int           base_level = 0;
     NewtonSystem                  system;
     /// Declared after the system it refers to, so that it is destroyed first.

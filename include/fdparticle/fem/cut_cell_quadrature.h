@@ -121,16 +121,19 @@ namespace fdparticle
 
     /**
      * Append to inside and outside the rules (real coordinates) of the parts of box in and
-     * out of the ball of centre X (the image that meets the box) and radius. A box whose
-     * closure holds the ball's centre is split first (at the centre, then in halves):
-     * there the level set has no height direction and deal.II's generator falls back to
-     * rules that are wrong by up to 14 % for the Q2 integrands and not mirror symmetric.
+     * out of the shape centred at X (the image that meets the box), from its level set
+     * (Shape::level_set). A box whose closure holds the centre is split first (at the
+     * centre, then in halves): there the level set has no height direction and deal.II's
+     * generator falls back to rules that are wrong by up to 14 % for the Q2 integrands
+     * and not mirror symmetric. The height-direction test assumes a level set whose
+     * gradient points away from the centre, as the sphere's does.
      */
-    void append_ball_rules(const BoundingBox<dim> &box, const Point<dim> &X, const double radius,
-                           std::vector<Point<dim>> &inside_points,
-                           std::vector<double> &    inside_weights,
-                           std::vector<Point<dim>> &outside_points,
-                           std::vector<double> &    outside_weights) const;
+    void append_shape_rules(const BoundingBox<dim> &box, const Point<dim> &X,
+                            const Shape<dim> &       shape,
+                            std::vector<Point<dim>> &inside_points,
+                            std::vector<double> &    inside_weights,
+                            std::vector<Point<dim>> &outside_points,
+                            std::vector<double> &    outside_weights) const;
 
     /**
      * The level-set rules of the cut cells met so far, for the particle geometry of

@@ -9,8 +9,8 @@
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/lac/affine_constraints.h>
 
-#include <array>
-#include <cmath>
+#include <fdparticle/base/box.h>
+
 #include <vector>
 
 namespace fdparticle
@@ -18,13 +18,13 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * The box Ω: its corners and base mesh (subsection Geometry) and what happens on its
-   * faces (subsection Boundary conditions): each direction is periodic or bounded by two
-   * no-slip walls, which may slide with a given velocity. Faces carry boundary ids
-   * 0..2dim-1 in the order x-, x+, y-, y+, z-, z+.
+   * The box Ω with its mesh: the Box (corners, periodic directions, walls) and the base
+   * mesh on it (subsection Geometry), the periodic face pairs p4est needs, and the wall
+   * and periodicity constraints on a DoFHandler. Faces carry the boundary ids of
+   * Box::face_name.
    */
   template <int dim>
-  class Domain
+  class Domain : public Box<dim>
   {
   public:
     static void declare_parameters(ParameterHandler &prm);
@@ -37,15 +37,6 @@ namespace fdparticle
      * 0.1–1 TB. A larger request is a mistake (one refinement level too many), not a scene.
      */
     static constexpr double max_cells = 1e7;
-
-    /**
-     * The largest coordinate, and the inverse of the narrowest box, accepted. Lengths enter
-     * squared and cubed (cell volumes, |x - X|^2) and are multiplied by densities,
-     * viscosities and 1/dt: beyond 1e+-30 a scene leaves the range of double (1e+-308)
-     * and the run ends in overflow or a stack overflow of the cut-cell quadrature. A light
-     * year is 1e16 m, a nanometre 1e-9 m: any scene in any unit lies inside.
-     */
-    static constexpr double max_length = 1e30;
 
     /// Build the (refined) base mesh and register periodic face pairs with p4est.
     void create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const;
@@ -68,46 +59,15 @@ namespace fdparticle
                                const bool                 homogeneous,
                                AffineConstraints<double> &constraints) const;
 
-    /// A wall near a ball: the gap between them, the wall's inward normal and its
-    /// (tangential) velocity.
-    struct WallGap
-    {
-      double         gap;
-      Tensor<1, dim> normal, velocity;
-    };
-    /// The walls whose gap to the ball of centre x and radius r is below reach.
-    std::vector<WallGap> walls_near(const Point<dim> &x, const double r, const double reach) const;
-
-    bool                 is_periodic(const unsigned int direction) const;
-    /// The box's length in each periodic direction, 0 in the wall-bounded ones.
-    Tensor<1, dim>       period() const;
-    /// r shifted by whole periods (period as given by period()) to its shortest image:
-    /// the nearest-image rule of every distance in a periodic box (doc/method.md §12).
-    static Tensor<1, dim> nearest_image(Tensor<1, dim> r, const Tensor<1, dim> &period)
-    {
-      for (unsigned int d = 0; d < dim; ++d)
-        if (period[d] > 0)
-          r[d] -= period[d] * std::round(r[d] / period[d]);
-      return r;
-    }
-    bool                 is_wall(const types::boundary_id face) const;
-    Tensor<1, dim>       wall_velocity(const types::boundary_id face) const;
-    const Point<dim> &   lower_corner() const { return lower; }
-    const Point<dim> &   upper_corner() const { return upper; }
-    double               volume() const;
     unsigned int         n_global_refinements() const { return global_refinements; }
     /// Cells of the mesh create_mesh() builds (before any particle refinement).
     double               n_cells() const;
     /// The smallest base-mesh cell edge after the global refinements.
     double               base_cell_size() const;
-    static std::string   face_name(const types::boundary_id face);
 
   private:
-    Point<dim>                             lower, upper;
-    std::vector<unsigned int>              subdivisions;
-    unsigned int                           global_refinements = 0;
-    std::array<bool, dim>                  periodic{};
-    std::array<Tensor<1, dim>, 2 * dim>    wall_velocities{};
+    std::vector<unsigned int> subdivisions;
+    unsigned int              global_refinements = 0;
   };
 } // namespace fdparticle
 

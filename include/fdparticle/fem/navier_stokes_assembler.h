@@ -9,7 +9,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <fdparticle/core/fluid.h>
+#include <fdparticle/base/fluid.h>
 #include <fdparticle/fem/assembly/assembly_term.h>
 #include <fdparticle/fem/assembly/cut_cell_penalties.h>
 #include <fdparticle/fem/assembly/fluid_momentum.h>

@@ -4,7 +4,12 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/distributed/tria.h>
 
+#include <fdparticle/base/statistics_table.h>
+#include <fdparticle/fem/domain.h>
 #include <fdparticle/particles/particle_set.h>
+
+#include <string>
+#include <vector>
 
 namespace fdparticle
 {
@@ -44,10 +49,29 @@ namespace fdparticle
     bool in_band(const typename Triangulation<dim>::cell_iterator &cell,
                  const ParticleSet<dim> &particles) const;
 
+    /// statistics.csv's coarse_cut_cells: cut cells below the finest level (0 without
+    /// particle refinement), a check that the band keeps up with the particles.
+    void declare_columns(StatisticsTable &statistics) const;
+    void statistics(const parallel::distributed::Triangulation<dim> &triangulation,
+                    const ParticleSet<dim> &particles, const unsigned int base_level,
+                    StatisticsTable &statistics) const;
+
     /// Cells cut by a particle surface that are not at the finest level (a check).
     unsigned int coarse_cut_cells(const parallel::distributed::Triangulation<dim> &triangulation,
                                   const ParticleSet<dim> &particles,
                                   const unsigned int base_level) const;
+
+    /// Refuse, before the mesh is built, a scene whose adapted mesh would be unaffordable
+    /// (Domain::max_cells) or whose particles the finest cells cannot resolve
+    /// (ParticleSet::min_radius_in_cells): such a run fails at an unpredictable point, on
+    /// one rank only, or takes the machine down.
+    void check_scene(const Domain<dim> &domain, const ParticleSet<dim> &particles) const;
+
+    /// One warning sentence for each particle smaller than the cells around it
+    /// (radius below the smallest cell edge near it): λ cannot see such a ball.
+    std::vector<std::string>
+    resolution_warnings(const parallel::distributed::Triangulation<dim> &triangulation,
+                        const ParticleSet<dim> &                          particles) const;
 
   private:
     unsigned int n_levels = 0, interval = 1;

@@ -4,7 +4,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
-#include <fdparticle/fem/domain.h>
+#include <fdparticle/base/box.h>
 
 #include <algorithm>
 #include <array>
@@ -27,7 +27,7 @@ namespace fdparticle
   {
   public:
     /// Bins at least 'width' wide (one bin across a direction shorter than that).
-    CellList(const Domain<dim> &domain, const double width);
+    CellList(const Box<dim> &domain, const double width);
 
     /// Put point number k, at x, into its bin.
     void insert(const unsigned int k, const Point<dim> &x);
@@ -65,7 +65,7 @@ namespace fdparticle
 
     Point<dim>                               lower;
     Tensor<1, dim>                           length;
-    /// Domain::period(): the box length in a periodic direction, 0 in the others.
+    /// Box::period(): the box length in a periodic direction, 0 in the others.
     Tensor<1, dim>                           period;
     std::array<long, dim>                    n_bins{};
     std::map<Bin, std::vector<unsigned int>> members;

@@ -3,11 +3,12 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <fdparticle/core/fluid.h>
-#include <fdparticle/fem/domain.h>
+#include <fdparticle/base/fluid.h>
+#include <fdparticle/base/box.h>
 #include <fdparticle/particles/contact_friction.h>
 #include <fdparticle/particles/normal_contact.h>
 #include <fdparticle/particles/pair_search.h>
+#include <fdparticle/particles/particle_interaction.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/particles/repulsion_law.h>
 #include <fdparticle/particles/spring_dashpot_law.h>
@@ -51,7 +52,7 @@ namespace fdparticle
    * are found by a cell list (PairSearch) and cost nothing further.
    */
   template <int dim>
-  class Collisions
+  class Collisions : public ParticleInteraction<dim>
   {
   public:
     enum class Model
@@ -62,18 +63,19 @@ namespace fdparticle
     };
 
     static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm) override;
 
     /// Resolve the 'auto' defaults: ρ = h_finest; K = 100 × the apparent weight of the
     /// heavier ball of each pair, and the spring's k = K/ρ.
-    void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
-                    const ParticleSet<dim> &particles, const double finest_cell_size);
+    void initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
+                    const ParticleSet<dim> &particles, const double finest_cell_size) override;
 
     Model model() const { return contact_model; }
+    bool  enabled() const override { return contact_model != Model::none; }
 
     /// For the log: the spring-dashpot contact duration of the stiffest pair against the
     /// time step dt; empty for the other models.
-    std::string describe(const double dt) const;
+    std::string describe(const double dt) const override;
 
     /**
      * Subtract the contact force at X^{n+1}(V) from the force-balance rows of the free
@@ -81,14 +83,15 @@ namespace fdparticle
      * particles couples their rows). Adds F to each particle's contact_force for output.
      */
     void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
-                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
+                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const override;
 
-    /// Pairs of balls closer than the contact range at their current positions, and the
-    /// smallest gap between two balls, capped at the diameter of the largest ball (the
-    /// reach of the search: a larger gap means no ball is near another), for
-    /// statistics.csv.
-    void statistics(const ParticleSet<dim> &particles, unsigned int &n_contacts,
-                    double &min_gap) const;
+    /// statistics.csv's contacts, the pairs of balls closer than the contact range at
+    /// their current positions, and min_gap, the smallest gap between two balls, capped
+    /// at the diameter of the largest ball (the reach of the search: a larger gap means
+    /// no ball is near another).
+    void declare_columns(StatisticsTable &statistics) const override;
+    void statistics(const ParticleSet<dim> &particles,
+                    StatisticsTable &       statistics) const override;
 
   private:
     Model  contact_model = Model::none;

@@ -3,7 +3,7 @@
 
 #include <deal.II/base/tensor.h>
 
-#include <fdparticle/fem/domain.h>
+#include <fdparticle/base/box.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/particles/spring_dashpot_law.h>
 
@@ -61,7 +61,7 @@ namespace fdparticle
 
     /// The same for ball i against a wall at the iterate's gap wall.gap.
     void add_wall(ParticleSet<dim> &particles, const unsigned int i,
-                  const typename Domain<dim>::WallGap &wall, const NormalForce &normal_force,
+                  const typename Box<dim>::WallGap &wall, const NormalForce &normal_force,
                   const std::array<double, 3> &c, Eigen::VectorXd &r_p,
                   Eigen::SparseMatrix<double> *D) const;
 

@@ -3,10 +3,11 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <fdparticle/core/fluid.h>
-#include <fdparticle/fem/domain.h>
+#include <fdparticle/base/fluid.h>
+#include <fdparticle/base/box.h>
 #include <fdparticle/particles/normal_contact.h>
 #include <fdparticle/particles/pair_search.h>
+#include <fdparticle/particles/particle_interaction.h>
 #include <fdparticle/particles/particle_set.h>
 
 #include <Eigen/Dense>
@@ -38,22 +39,22 @@ namespace fdparticle
    * forces (NormalContact). Prescribed and fixed balls feel it in their contact force.
    */
   template <int dim>
-  class Lubrication
+  class Lubrication : public ParticleInteraction<dim>
   {
   public:
     static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm) override;
 
     /// Resolve the 'auto' lengths from the finest cell edge and take the viscosity.
-    void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
-                    const double finest_cell_size);
+    void initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
+                    const ParticleSet<dim> &particles, const double finest_cell_size) override;
 
-    bool enabled() const { return on; }
+    bool enabled() const override { return on; }
 
     /// Subtract the correction at X^{n+1}(V), V from the force-balance rows of the free
     /// balls, its derivative from D (if given), and add it to every ball's contact_force.
     void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
-                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
+                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const override;
 
     /// The correction's law at gap g and normal relative velocity v_n, for reduced radius
     /// a*, between two balls (pair) or a ball and a wall.
@@ -88,7 +89,7 @@ namespace fdparticle
     bool                  on = false;
     std::optional<double> resolved_entry, minimum_entry, shift_entry;
     double                resolved_gap = 0, viscosity = 0, finest_cell = 0;
-    Domain<dim>           domain;
+    Box<dim>           domain;
     std::unique_ptr<PairSearch<dim>> search;
 
     /// C(g) and C'(g) for reduced radius a*, g clamped to the minimum gap.

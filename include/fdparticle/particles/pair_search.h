@@ -4,7 +4,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
-#include <fdparticle/fem/domain.h>
+#include <fdparticle/base/box.h>
 
 #include <array>
 #include <vector>
@@ -25,7 +25,7 @@ namespace fdparticle
   class PairSearch
   {
   public:
-    explicit PairSearch(const Domain<dim> &domain);
+    explicit PairSearch(const Box<dim> &domain);
 
     struct Pair
     {
@@ -41,7 +41,7 @@ namespace fdparticle
                             const double reach) const;
 
   private:
-    Domain<dim> domain;
+    Box<dim> domain;
   };
 } // namespace fdparticle
 

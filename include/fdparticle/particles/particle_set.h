@@ -7,10 +7,12 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
-#include <fdparticle/fem/domain.h>
+#include <fdparticle/base/box.h>
+#include <fdparticle/base/statistics_table.h>
 #include <fdparticle/particles/cell_list.h>
 #include <fdparticle/particles/rigid_body.h>
-#include <fdparticle/core/time_stepper.h>
+#include <fdparticle/particles/shape.h>
+#include <fdparticle/base/time_stepper.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
@@ -20,6 +22,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <optional>
 #include <vector>
@@ -45,13 +48,15 @@ namespace fdparticle
     kinematic       ///< seed 3.14d: |P| ω = ½ ∫_P ∇ × u
   };
 
-  /// One rigid sphere (3D) or disk (2D) and its time history.
+  /// One rigid particle: its shape, motion and time history.
   template <int dim>
   struct Particle
   {
     unsigned int   id = 0;
     ParticleMotion motion = ParticleMotion::free;
-    double         radius = 0, density = 0;
+    double         density = 0;
+    /// The geometry about the centre (shared by copies of the particle; never changed).
+    std::shared_ptr<const Shape<dim>> shape;
 
     /// X^n and X^{n−1}; geometry_center is where the ball sits during the current step.
     Point<dim> position, position_old, geometry_center;
@@ -85,16 +90,12 @@ namespace fdparticle
     {
       return c[0] * omega + c[1] * omega_old + c[2] * omega_old2;
     }
-    double volume() const { return RigidBody<dim>::volume(radius); }
-    double inertia() const { return RigidBody<dim>::inertia(radius); }
-    /// Points closer to the surface than this fraction of the radius count as on it.
-    /// A mesh vertex that lies on the surface in exact arithmetic (a centre on a vertex
-    /// and a radius of whole cells, as scenes are often set up) falls on either side by
-    /// round-off, and differently from its mirror image: cells would become cut or not
-    /// (penalties, multiplier DoFs) at random, and a sphere on the axis of a symmetric
-    /// box would drift sideways (tests/symmetry_vertex_3d.prm). Far above round-off
-    /// (10⁻¹⁶), far below anything a mesh resolves.
-    static constexpr double surface_tolerance = 1e-10;
+    double volume() const { return shape->volume(); }
+    double inertia() const { return shape->inertia(); }
+    /// The radius of the ball about the centre that holds the particle: what bins, walls
+    /// and the contact models see (Shape::bounding_radius).
+    double bounding_radius() const { return shape->bounding_radius(); }
+    static constexpr double surface_tolerance = Shape<dim>::surface_tolerance;
 
     /// The box's length in each periodic direction, 0 in the others. A ball that crosses
     /// a periodic face is also at its images X + Σ_d k_d period_d e_d (k_d integers): the
@@ -104,21 +105,18 @@ namespace fdparticle
     /// x − X to the nearest image of the centre: the arm of a point of the ball.
     Tensor<1, dim> offset(const Point<dim> &x) const
     {
-      return Domain<dim>::nearest_image(x - geometry_center, period);
+      return Box<dim>::nearest_image(x - geometry_center, period);
     }
 
-    /// Whether x is in the ball, its surface included (within surface_tolerance).
-    bool contains(const Point<dim> &x) const
-    {
-      // Squares: the same test without a root, per quadrature point of a cut cell. The
-      // nearest image is the only one that can contain x (a ball is narrower than a period).
-      return offset(x).norm_square() <
-             radius * radius * (1 + surface_tolerance) * (1 + surface_tolerance);
-    }
-    /// Whether the ball overlaps the box by more than touching (within surface_tolerance).
+    /// Whether x is in the particle, its surface included (within surface_tolerance).
+    /// The nearest image is the only one that can contain x (a particle is narrower
+    /// than a period).
+    bool contains(const Point<dim> &x) const { return shape->contains(offset(x)); }
+    /// Whether the particle's bounding ball overlaps the box by more than touching
+    /// (within surface_tolerance).
     bool meets(const BoundingBox<dim> &box) const
     {
-      return distance_to(box) < radius * (1 - surface_tolerance);
+      return distance_to(box) < bounding_radius() * (1 - surface_tolerance);
     }
     /// Distance from the nearest image of the centre to the nearest point of box (0 if
     /// the centre is inside).
@@ -175,7 +173,7 @@ namespace fdparticle
     /// Reads the particles (the Particles list, then the Particle file, then the Random
     /// particles) and checks them against the box: inside, off the walls, no overlaps.
     /// The file is read on rank 0 of comm and broadcast.
-    void parse_parameters(ParameterHandler &prm, const Domain<dim> &domain,
+    void parse_parameters(ParameterHandler &prm, const Box<dim> &domain,
                           const MPI_Comm comm = MPI_COMM_SELF);
 
     unsigned int              size() const { return particles.size(); }
@@ -188,6 +186,9 @@ namespace fdparticle
 
     /// Mean velocity of the free particles, as three components (0 if there are none).
     Tensor<1, 3> mean_free_velocity() const;
+    /// statistics.csv's mean_particle_vx, _vy, _vz: mean_free_velocity().
+    void declare_columns(StatisticsTable &statistics) const;
+    void statistics(StatisticsTable &statistics) const;
 
     /// Index of the particle containing x during this step, or -1 (fluid); the lowest
     /// index if two contain it. O(1) per point: only the balls of x's bins are tried.
@@ -214,7 +215,7 @@ namespace fdparticle
      * this is the stop when they are off or too weak. Called after each step (the time
      * loop then retries with a smaller step) and by parse_parameters.
      */
-    void check_positions(const Domain<dim> &domain, const double time) const;
+    void check_positions(const Box<dim> &domain, const double time) const;
 
     /// A number that changes whenever the balls' geometry may have changed (their index is
     /// rebuilt), unique over every particle set of the run (a copy keeps it): what is
@@ -229,7 +230,7 @@ namespace fdparticle
 
   private:
     std::vector<Particle<dim>> particles;
-    Domain<dim>                domain;
+    Box<dim>                domain;
     /**
      * The balls' geometry centres in bins at least 2 R_max wide, rebuilt whenever the
      * centres move (update_index): the cell-to-particles lookups of the per-cell and

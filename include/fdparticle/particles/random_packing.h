@@ -4,7 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
-#include <fdparticle/fem/domain.h>
+#include <fdparticle/base/box.h>
 
 #include <cstdint>
 #include <vector>
@@ -28,7 +28,7 @@ namespace fdparticle
   public:
     /// Declared inside subsection Particles.
     static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm, const Domain<dim> &domain);
+    void        parse_parameters(ParameterHandler &prm, const Box<dim> &domain);
 
     /// The requested number of balls (0: none).
     unsigned int count() const { return n_balls; }
@@ -58,7 +58,7 @@ namespace fdparticle
     double        min_radius = 0, max_radius = 0, ball_density = 0, min_gap = 0;
     Point<dim>    lower, upper; // the sub-box
     std::uint64_t seed = 0;
-    Domain<dim>   domain;
+    Box<dim>   domain;
   };
 } // namespace fdparticle
 

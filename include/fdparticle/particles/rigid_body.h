@@ -38,12 +38,6 @@ namespace fdparticle
     /// r × f as a 3-vector (2D: only z is non-zero).
     static Tensor<1, 3> moment(const Tensor<1, dim> &r, const Tensor<1, dim> &f);
 
-    /// |P| of a ball (3D) or disk (2D) of radius R.
-    static double volume(const double radius);
-
-    /// J/ρ: moment of inertia per unit density, (2/5)|P|R² (sphere), (1/2)|P|R² (disk).
-    static double inertia(const double radius);
-
     /// Curl of a velocity gradient G_il = ∂_l u_i as a 3-vector (2D: z component only).
     static Tensor<1, 3> curl(const Tensor<2, dim> &grad_u);
 

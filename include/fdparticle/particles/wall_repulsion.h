@@ -4,9 +4,10 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
-#include <fdparticle/fem/domain.h>
-#include <fdparticle/core/fluid.h>
+#include <fdparticle/base/box.h>
+#include <fdparticle/base/fluid.h>
 #include <fdparticle/particles/normal_contact.h>
+#include <fdparticle/particles/particle_interaction.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/particles/repulsion_law.h>
 #include <fdparticle/particles/spring_dashpot_law.h>
@@ -42,22 +43,22 @@ namespace fdparticle
    * nothing.
    */
   template <int dim>
-  class WallRepulsion
+  class WallRepulsion : public ParticleInteraction<dim>
   {
   public:
     static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm) override;
 
     /// Resolve the 'auto' defaults: ρ = h_finest, K = 100 × apparent weight of each ball,
     /// and the spring's k = K/ρ.
-    void initialize(const Domain<dim> &domain, const Fluid<dim> &fluid,
-                    const ParticleSet<dim> &particles, const double finest_cell_size);
+    void initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
+                    const ParticleSet<dim> &particles, const double finest_cell_size) override;
 
-    bool enabled() const { return on; }
+    bool enabled() const override { return on; }
 
     /// For the log: the spring-dashpot contact duration of the shortest wall contact
     /// against the time step dt; empty for the repulsion.
-    std::string describe(const double dt) const;
+    std::string describe(const double dt) const override;
 
     /**
      * Subtract F(X^{n+1}(V)) from the force-balance rows of the free particles (their
@@ -65,7 +66,7 @@ namespace fdparticle
      * block. Also adds F to each particle's contact_force for output.
      */
     void add_to_particle_rows(ParticleSet<dim> &particles, const std::array<double, 3> &c,
-                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const;
+                              Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D) const override;
 
   private:
     bool                  on = true, spring_dashpot = false;
@@ -74,7 +75,7 @@ namespace fdparticle
     double                rho = 0, restitution = 1, friction = 0;
     std::vector<double>   stiffness; // K per particle
     std::vector<double>   mass;      // dry mass ρ_k |P_k| per particle
-    Domain<dim>           domain;
+    Box<dim>           domain;
 
     SpringDashpotLaw spring(const unsigned int k) const;
   };

@@ -50,6 +50,7 @@ namespace fdparticle
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
+    std::string name() const override { return "direct"; }
     void      pattern_changed() override;
     void      operator_changed() override;
     /// The tolerance is not used: the solve is exact up to round-off.

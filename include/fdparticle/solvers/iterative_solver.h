@@ -43,7 +43,10 @@ namespace fdparticle
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
 
-    bool      iterative() const override { return true; }
+    std::string   name() const override { return "iterative"; }
+    bool          iterative() const override { return true; }
+    /// The Schur complement approximation reads the cells' pressure mass matrices.
+    AssembledData assembled_data() const override { return {true}; }
     void      pattern_changed() override;
     void      operator_changed() override;
     SolveInfo solve(const NewtonSystem &system, const double tolerance,

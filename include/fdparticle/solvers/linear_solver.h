@@ -8,8 +8,8 @@
 
 #include <Eigen/Dense>
 
-#include <memory>
 #include <stdexcept>
+#include <string>
 
 namespace fdparticle
 {
@@ -36,6 +36,7 @@ namespace fdparticle
    * Nothing else drops them: a Newton solver that reuses its Jacobian simply does not call
    * operator_changed(), and solve() works with the operator it has.
    *
+   * Implementations are chosen by create_linear_solver() (linear_solver_factory.h).
    * An implementation may keep references to the system's matrix from one solve to the
    * next (a factorization does): the NewtonSystem must outlive the solver.
    */
@@ -57,15 +58,20 @@ namespace fdparticle
 
     virtual ~LinearSolver() = default;
 
-    /// Declare the parameters of every implementation, and the choice between them.
-    static void declare_parameters(ParameterHandler &prm);
-    /// The implementation the parameters select, set up from them; 'auto' chooses by the
-    /// number of finite-element unknowns.
-    static std::unique_ptr<LinearSolver> create(ParameterHandler &            prm,
-                                                const types::global_dof_index unknowns);
-
+    /// The method in a word ("direct", "iterative"), for the run's first screen line.
+    virtual std::string name() const = 0;
     /// Whether solves take iterations (and the tolerance matters).
     virtual bool iterative() const { return false; }
+
+    /// What the solver reads of the system besides A, B, C, D and the residuals; the
+    /// assembler builds only what is asked for.
+    struct AssembledData
+    {
+      /// NewtonSystem::Blocks::pressure_mass and pressure_fluid_mass, the cells' pressure
+      /// mass matrices (for a Schur complement approximation).
+      bool cell_pressure_masses = false;
+    };
+    virtual AssembledData assembled_data() const { return {}; }
 
     /// A's sparsity pattern is about to change: release everything built on it. Must come
     /// before NewtonSystem::reinit() with a new pattern.

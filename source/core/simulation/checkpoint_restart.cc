@@ -1,6 +1,6 @@
 // Simulation: writing a checkpoint and resuming a run from one (Checkpointing/...).
 
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
 
 #include <sstream>
@@ -33,7 +33,7 @@ namespace fdparticle
     output.load(in);
     if (in.fail())
       throw CollectiveError("The checkpoint in '" + checkpointer.directory() + "' is incomplete.");
-    output.initialize(prm, comm, true, time.step_number(), time.time());
+    output.initialize(prm, statistics, comm, true, time.step_number(), time.time());
     pcout << "fdparticle: resumed from '" << checkpointer.directory() << "' at step "
           << time.step_number() << ", t = " << time.time() << std::endl;
   }
@@ -55,9 +55,8 @@ namespace fdparticle
                        particles.size(), state.str());
   }
 
-  // The members defined in this file, for both dimensions.
-  template void Simulation<2>::resume();
-  template void Simulation<2>::write_checkpoint();
-  template void Simulation<3>::resume();
-  template void Simulation<3>::write_checkpoint();
+  // The members defined in this file, for both dimensions (an explicit instantiation of a
+  // class instantiates the members defined where it stands).
+  template class Simulation<2>;
+  template class Simulation<3>;
 } // namespace fdparticle

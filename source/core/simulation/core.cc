@@ -2,13 +2,13 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
 #include <fdparticle/fem/introspection.h>
+#include <fdparticle/io/progress_line.h>
 
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <iomanip>
 #include <sstream>
 
@@ -16,20 +16,6 @@ namespace fdparticle
 {
   namespace
   {
-    /// Seconds as "42 s", "12 min" or "3.5 h", for the estimate of the time left.
-    std::string format_duration(const double seconds)
-    {
-      std::ostringstream s;
-      s << std::fixed;
-      if (seconds < 120)
-        s << std::setprecision(0) << seconds << " s";
-      else if (seconds < 2 * 3600)
-        s << std::setprecision(0) << seconds / 60 << " min";
-      else
-        s << std::setprecision(1) << seconds / 3600 << " h";
-      return s.str();
-    }
-
     double wall_clock()
     {
       return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -58,14 +44,12 @@ namespace fdparticle
     TimeStepper::declare_parameters(prm);
     CutCellQuadrature<3>::declare_parameters(prm);
     NavierStokesAssembler<3>::declare_parameters(prm);
-    LinearSolver::declare_parameters(prm);
+    declare_linear_solver_parameters(prm);
     NewtonSolver::declare_parameters(prm);
     OutputWriter<3>::declare_parameters(prm);
     ParticleRefinement<3>::declare_parameters(prm);
     Checkpointer<3>::declare_parameters(prm);
-    WallRepulsion<3>::declare_parameters(prm);
-    Collisions<3>::declare_parameters(prm);
-    Lubrication<3>::declare_parameters(prm);
+    ParticleInteractions<3>::declare_parameters(prm);
     declare_simulation_parameters(prm);
   }
 
@@ -98,38 +82,27 @@ namespace fdparticle
     newton.parse_parameters(prm);
     output.parse_parameters(prm);
     refinement.parse_parameters(prm);
-    {
-      // Refused here, before the mesh is built: an unaffordable one fails by running out of
-      // memory at an unpredictable point, on one rank only, or takes the machine down.
-      const double cells = refinement.estimated_cells(domain, particles);
-      AssertThrow(cells <= Domain<dim>::max_cells,
-                  ExcMessage("The mesh would have about " + ParameterTools::format_short(cells) +
-                             " cells (" + ParameterTools::format_short(domain.n_cells()) +
-                             " base cells, Refinement/Particle refinement levels = " +
-                             std::to_string(refinement.levels()) +
-                             " around the particles); fdparticle refuses meshes of more than " +
-                             ParameterTools::format_short(Domain<dim>::max_cells) +
-                             " cells (0.1-1 TB of memory). Use fewer particle refinement "
-                             "levels, a narrower Refinement/Band width or a coarser base mesh."));
-      const double h = domain.base_cell_size() / std::pow(2.0, refinement.levels());
-      for (unsigned int k = 0; k < particles.size(); ++k)
-        AssertThrow(particles[k].radius >= ParticleSet<dim>::min_radius_in_cells * h,
-                    ExcMessage("Particle " + std::to_string(k + 1) + " (radius " +
-                               ParameterTools::format_short(particles[k].radius) +
-                               ") is smaller than " +
-                               ParameterTools::format_short(ParticleSet<dim>::min_radius_in_cells) +
-                               " times the finest cell edge (h = " +
-                               ParameterTools::format_short(h) +
-                               "): the mesh cannot resolve it. Refine with Geometry/Global "
-                               "refinements or Refinement/Particle refinement levels."));
-    }
+    refinement.check_scene(domain, particles);
     checkpointer.parse_parameters(prm, output.directory());
-    repulsion.parse_parameters(prm);
-    collisions.parse_parameters(prm);
-    lubrication.parse_parameters(prm);
+    interactions.parse_parameters(prm);
+    declare_statistics();
     prm.enter_subsection("Initial conditions");
     hydrostatic_start = (prm.get("Pressure") == "hydrostatic");
     prm.leave_subsection();
+  }
+
+  template <int dim>
+  void Simulation<dim>::declare_statistics()
+  {
+    for (const char *name :
+         {"step", "time", "dt", "cells", "dofs", "nonlinear_iterations", "linear_iterations",
+          "inner_iterations", "residual", "initial_residual", "jacobians", "solver_setups",
+          "wall_seconds", "time_step_reductions", "max_velocity", "hydrostatic_deviation"})
+      statistics.declare(name);
+    statistics.declare_vector("mean_v");
+    refinement.declare_columns(statistics);
+    particles.declare_columns(statistics);
+    interactions.declare_columns(statistics);
   }
 
   template <int dim>
@@ -164,9 +137,7 @@ namespace fdparticle
       start();
     {
       const double finest_cell_size = domain.base_cell_size() / std::pow(2.0, refinement.levels());
-      repulsion.initialize(domain, fluid, particles, finest_cell_size);
-      collisions.initialize(domain, fluid, particles, finest_cell_size);
-      lubrication.initialize(domain, fluid, finest_cell_size);
+      interactions.initialize(domain, fluid, particles, finest_cell_size);
     }
 
     pcout << "fdparticle: " << dim << "D, " << triangulation.n_global_active_cells()
@@ -175,86 +146,48 @@ namespace fdparticle
           << " particle(s), " << time.scheme_name() << ", "
           << (fluid.convection ? "Navier-Stokes" : "Stokes") << ", "
           << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s), "
-          << (linear_solver->iterative() ? "iterative" : "direct") << " linear solver";
+          << linear_solver->name() << " linear solver";
     pcout << partition_summary() << std::endl;
-    check_resolution();
-    for (const std::string &line :
-         {repulsion.describe(time.next_step()), collisions.describe(time.next_step())})
-      if (!line.empty())
-        pcout << line << std::endl;
+    for (const std::string &line : refinement.resolution_warnings(triangulation, particles))
+      pcout << line << std::endl;
+    for (const std::string &line : interactions.describe(time.next_step()))
+      pcout << line << std::endl;
 
-    // (simulated time, wall seconds) of the recent steps, for the estimate of the time left.
-    std::deque<std::pair<double, double>> recent;
+    ProgressLine progress(time.end_time(), linear_solver->iterative());
     while (!time.finished())
       {
         const double   step_start = wall_clock();
-        StepStatistics stats;
-        stats.step = time.step_number() + 1;
-        do_time_step(stats);
-        stats.time_step_reductions = time.reductions();
+        statistics.new_row();
+        statistics.set("step", time.step_number() + 1);
+        do_time_step();
+        statistics.set("time_step_reductions", time.reductions());
         smoothness.record(particles);
         time.advance();
         old_old_solution = old_solution;
         old_solution = solution;
 
-        stats.time = time.time();
-        stats.cells = triangulation.n_global_active_cells();
-        stats.dofs = dof_handler.n_dofs() + particles.n_unknowns();
-        stats.max_velocity = max_velocity();
-        field_statistics(stats);
-        collisions.statistics(particles, stats.contacts, stats.min_gap);
-        stats.mean_particle_velocity = particles.mean_free_velocity();
-        if (refinement.enabled())
-          stats.coarse_cut_cells = refinement.coarse_cut_cells(triangulation, particles, base_level);
+        statistics.set("time", time.time());
+        statistics.set("cells", triangulation.n_global_active_cells());
+        statistics.set("dofs", dof_handler.n_dofs() + particles.n_unknowns());
+        statistics.set("max_velocity", max_velocity());
+        field_statistics();
+        refinement.statistics(triangulation, particles, base_level, statistics);
+        particles.statistics(statistics);
+        interactions.statistics(particles, statistics);
         write_output(output.vtu_due(time.step_number()));
         if (checkpointer.due(time.step_number()) || (checkpointer.enabled() && time.finished()))
           write_checkpoint();
-        stats.wall_seconds = wall_clock() - step_start;
-        output.write_statistics_row(stats);
-        recent.emplace_back(stats.dt, stats.wall_seconds);
-        if (recent.size() > progress_window)
-          recent.pop_front();
-        print_step_line(stats, recent);
+        statistics.set("wall_seconds", wall_clock() - step_start);
+        output.write_statistics_row(statistics);
+        progress.print(pcout, statistics, time.finished());
       }
     smoothness.write(output.directory(), pcout, Utilities::MPI::this_mpi_process(comm) == 0);
     pcout << "fdparticle: done in " << std::setprecision(4) << wall_clock() - wall_start
           << " s; output in " << output.directory() << std::endl;
   }
 
-  template <int dim>
-  void Simulation<dim>::print_step_line(const StepStatistics &                        stats,
-                                        const std::deque<std::pair<double, double>> &recent) const
-  {
-    double simulated = 0, wall = 0;
-    for (const auto &[dt, seconds] : recent)
-      {
-        simulated += dt;
-        wall += seconds;
-      }
-    const double end = time.end_time();
-    const double left = (simulated > 0 ? (end - stats.time) * wall / simulated : 0.0);
-    pcout << "step " << std::setw(5) << stats.step << "  t = " << std::setw(10)
-          << std::setprecision(6) << stats.time << " / " << end << " (" << std::fixed
-          << std::setprecision(0) << std::setw(3) << 100 * stats.time / end << " %)"
-          << std::defaultfloat << "  Newton " << stats.nonlinear_iterations;
-    if (linear_solver->iterative())
-      pcout << "  linear " << stats.linear_iterations;
-    pcout << "  residual "
-          << std::scientific << std::setprecision(3) << stats.residual << std::defaultfloat
-          << "  DoFs " << stats.dofs << "  " << std::setprecision(3) << stats.wall_seconds
-          << " s";
-    if (!time.finished())
-      pcout << "  left ~" << format_duration(left);
-    pcout << std::endl;
-  }
-
-  // The members defined in this file, for both dimensions.
-  template Simulation<2>::Simulation(ParameterHandler &, const MPI_Comm);
-  template void Simulation<2>::run();
-  template void Simulation<2>::run_time_loop();
-  template void Simulation<2>::print_step_line(const StepStatistics &, const std::deque<std::pair<double, double>> &) const;
-  template Simulation<3>::Simulation(ParameterHandler &, const MPI_Comm);
-  template void Simulation<3>::run();
-  template void Simulation<3>::run_time_loop();
-  template void Simulation<3>::print_step_line(const StepStatistics &, const std::deque<std::pair<double, double>> &) const;
+  // The members defined in this file, for both dimensions (an explicit instantiation of a
+  // class instantiates the members defined where it stands).
+  template class Simulation<2>;
+  template class Simulation<3>;
 } // namespace fdparticle

@@ -23,7 +23,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  void Simulation<dim>::field_statistics(StepStatistics &stats) const
+  void Simulation<dim>::field_statistics()
   {
     // One pass over the cells for both field statistics of a step:
     //  - RMS over Ω of p − p_static minus its mean (zero for a fluid at hydrostatic rest);
@@ -57,10 +57,12 @@ namespace fdparticle
     Utilities::MPI::sum(ArrayView<const double>(sums, 3 + dim), comm,
                         ArrayView<double>(sums, 3 + dim));
     const double mean = sums[0] / sums[2];
-    stats.hydrostatic_deviation = std::sqrt(std::max(0.0, sums[1] / sums[2] - mean * mean));
-    stats.mean_velocity = Tensor<1, 3>();
+    statistics.set("hydrostatic_deviation",
+                   std::sqrt(std::max(0.0, sums[1] / sums[2] - mean * mean)));
+    Tensor<1, dim> mean_velocity;
     for (unsigned int d = 0; d < dim; ++d)
-      stats.mean_velocity[d] = sums[3 + d] / sums[2];
+      mean_velocity[d] = sums[3 + d] / sums[2];
+    statistics.set_vector("mean_v", mean_velocity);
   }
 
   template <int dim>
@@ -73,11 +75,8 @@ namespace fdparticle
                           solution_ghost, assembler.particle_fraction(dof_handler), particles);
   }
 
-  // The members defined in this file, for both dimensions.
-  template double Simulation<2>::max_velocity() const;
-  template void Simulation<2>::field_statistics(StepStatistics &) const;
-  template void Simulation<2>::write_output(const bool);
-  template double Simulation<3>::max_velocity() const;
-  template void Simulation<3>::field_statistics(StepStatistics &) const;
-  template void Simulation<3>::write_output(const bool);
+  // The members defined in this file, for both dimensions (an explicit instantiation of a
+  // class instantiates the members defined where it stands).
+  template class Simulation<2>;
+  template class Simulation<3>;
 } // namespace fdparticle

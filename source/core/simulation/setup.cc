@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/block_numbering.h>
 #include <fdparticle/fem/introspection.h>
 
 #include <iomanip>
@@ -31,7 +32,7 @@ namespace fdparticle
     solution_ghost = solution;
     old_solution = solution;
     old_old_solution = solution;
-    output.initialize(prm, comm);
+    output.initialize(prm, statistics, comm);
     // t = 0: the state before the first step (forces are those of the fluid at rest).
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
@@ -49,8 +50,9 @@ namespace fdparticle
     // Chosen once, on the first mesh: 'auto' by its actual unknowns (an estimate from the
     // refinement band before the mesh exists overcounts).
     if (!linear_solver)
-      linear_solver = LinearSolver::create(prm, dof_handler.n_dofs());
-    setup_blocks();
+      linear_solver = create_linear_solver(prm, dof_handler.n_dofs());
+    number_dofs_by_block(dof_handler, linear_solver->assembled_data().cell_pressure_masses,
+                         system.blocks);
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     // Owned velocity DoFs; λ DoFs of owned and ghost cells (the constraints need them on
@@ -97,84 +99,6 @@ namespace fdparticle
     pressure_reference_dof = Utilities::MPI::broadcast(comm, best_dof, root);
     pressure_reference_point = Utilities::MPI::broadcast(comm, best_center, root);
     assembler.set_pressure_reference(pressure_reference_point);
-  }
-
-  template <int dim>
-  void Simulation<dim>::setup_blocks()
-  {
-    // Each rank numbers its own DoFs u | λ | p, keeping its contiguous range (deal.II's
-    // parallel vectors and DataOut need one range per rank; component_wise would number
-    // the blocks across the ranks). Within a block the old order is kept: u and λ of one
-    // node are neighbours in it (FESystem), so velocity DoF i and multiplier DoF i of a
-    // rank sit at the same node and component.
-    const IndexSet                 owned = dof_handler.locally_owned_dofs();
-    Assert(owned.is_contiguous(), ExcInternalError());
-    using Blocks = NewtonSystem::Blocks;
-    // A DoF's block is its field: both list u, λ, p in this order.
-    static_assert(static_cast<unsigned int>(Introspection<dim>::Field::pressure) == Blocks::pressure,
-                  "the blocks must follow the order of the fields");
-    std::vector<unsigned int>      block(owned.n_elements(), 0);
-    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        {
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (owned.is_element(dofs[i]))
-              block[owned.index_within_set(dofs[i])] =
-                static_cast<unsigned int>(Introspection<dim>::field(fe.system_to_component_index(i).first));
-        }
-    std::array<types::global_dof_index, Blocks::n_blocks> count{};
-    for (const unsigned int b : block)
-      ++count[b];
-    std::array<types::global_dof_index, Blocks::n_blocks + 1> range{};
-    range[0] = owned.n_elements() > 0 ? *owned.begin() : 0;
-    for (unsigned int b = 0; b < Blocks::n_blocks; ++b)
-      range[b + 1] = range[b] + count[b];
-    std::vector<types::global_dof_index> new_numbers(owned.n_elements());
-    std::array<types::global_dof_index, Blocks::n_blocks> next{};
-    std::copy(range.begin(), range.begin() + Blocks::n_blocks, next.begin());
-    for (unsigned int k = 0; k < block.size(); ++k)
-      new_numbers[k] = next[block[k]]++;
-    dof_handler.renumber_dofs(new_numbers);
-
-    Blocks &b = system.blocks;
-    b.range = Utilities::MPI::all_gather(comm, range);
-    b.offset.assign(b.range.size(), {});
-    for (std::size_t r = 1; r < b.range.size(); ++r)
-      for (unsigned int k = 0; k < Blocks::n_blocks; ++k)
-        b.offset[r][k] = b.offset[r - 1][k] + (b.range[r - 1][k + 1] - b.range[r - 1][k]);
-    DoFTools::extract_constant_modes(dof_handler,
-                                     fe.component_mask(Introspection<dim>::velocities()),
-                                     b.velocity_modes);
-    b.particle_block_size = RigidBody<dim>::n_unknowns;
-
-    // The block solver reads the pairing matrix off the λ–u block of A (see above); it
-    // would precondition with nonsense if the pairing of the numbers broke, so check it.
-    const types::global_dof_index shift = range[Blocks::multiplier] - range[Blocks::velocity];
-    AssertThrow(range[Blocks::pressure] - range[Blocks::multiplier] == shift, ExcInternalError());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-            {
-              const auto [component, index] = fe.system_to_component_index(i);
-              if (Introspection<dim>::field(component) != Introspection<dim>::Field::velocity ||
-                  dofs[i] < range[Blocks::velocity] || dofs[i] >= range[Blocks::multiplier])
-                continue;
-              const unsigned int j = fe.component_to_system_index(component + dim, index);
-              AssertThrow(dofs[j] == dofs[i] + shift, ExcInternalError());
-            }
-        }
-
-    // Only the iterative solver reads the cell pressure masses; 0 tells the assembler to
-    // skip them.
-    b.pressure_dofs_per_cell =
-      linear_solver->iterative() ?
-        fe.base_element(fe.component_to_base_index(Introspection<dim>::pressure_component).first)
-          .n_dofs_per_cell() :
-        0;
   }
 
   template <int dim>
@@ -369,52 +293,8 @@ namespace fdparticle
     solution.compress(VectorOperation::insert);
   }
 
-  template <int dim>
-  void Simulation<dim>::check_resolution()
-  {
-    // The ball must span cells for λ to see it; below one cell per radius it is a blur.
-    for (unsigned int k = 0; k < particles.size(); ++k)
-      {
-        const Particle<dim> &P = particles[k];
-        double               h = std::numeric_limits<double>::max();
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->is_locally_owned() &&
-              cell->center().distance(P.position) < P.radius + cell->diameter())
-            h = std::min(h, cell->minimum_vertex_distance());
-        h = Utilities::MPI::min(h, comm);
-        if (P.radius < h)
-          pcout << "Warning: particle " << k + 1 << " (radius " << P.radius
-                << ") is smaller than the cells around it (h = " << h << ", d/h = "
-                << std::setprecision(3) << 2 * P.radius / h
-                << "): it is under-resolved; refine with Geometry/Global refinements or "
-                   "Refinement/Particle refinement levels."
-                << std::endl;
-      }
-  }
-
-  // The members defined in this file, for both dimensions.
-  template void Simulation<2>::start();
-  template void Simulation<2>::setup_dofs();
-  template void Simulation<2>::adapt_mesh(const bool);
-  template void Simulation<2>::change_mesh(const bool);
-  template void Simulation<2>::rebalance();
-  template std::string Simulation<2>::partition_summary() const;
-  template NavierStokesAssembler<2>::ParticleSupport Simulation<2>::make_constraints();
-  template void Simulation<2>::setup_matrix(
-    const NavierStokesAssembler<2>::ParticleSupport &);
-  template void Simulation<2>::set_initial_pressure();
-  template void Simulation<2>::setup_blocks();
-  template void Simulation<2>::check_resolution();
-  template void Simulation<3>::start();
-  template void Simulation<3>::setup_dofs();
-  template void Simulation<3>::adapt_mesh(const bool);
-  template void Simulation<3>::change_mesh(const bool);
-  template void Simulation<3>::rebalance();
-  template std::string Simulation<3>::partition_summary() const;
-  template NavierStokesAssembler<3>::ParticleSupport Simulation<3>::make_constraints();
-  template void Simulation<3>::setup_matrix(
-    const NavierStokesAssembler<3>::ParticleSupport &);
-  template void Simulation<3>::set_initial_pressure();
-  template void Simulation<3>::setup_blocks();
-  template void Simulation<3>::check_resolution();
+  // The members defined in this file, for both dimensions (an explicit instantiation of a
+  // class instantiates the members defined where it stands).
+  template class Simulation<2>;
+  template class Simulation<3>;
 } // namespace fdparticle

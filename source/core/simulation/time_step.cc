@@ -1,7 +1,7 @@
 // Simulation: one time step. Newton's method on the step's system (through NewtonSolver),
 // the retry with a halved step when it fails (doc/method.md §5), and the particle forces.
 
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
 
 #include <cmath>
@@ -12,7 +12,7 @@
 namespace fdparticle
 {
   template <int dim>
-  void Simulation<dim>::do_time_step(StepStatistics &stats)
+  void Simulation<dim>::do_time_step()
   {
     const ParticleSet<dim> accepted = particles;
     if (refinement.due(time.step_number()))
@@ -37,11 +37,11 @@ namespace fdparticle
     };
     for (;;)
       {
-        stats.dt = time.next_step();
+        statistics.set("dt", time.next_step());
         particles.prepare_step(time);
         setup_matrix(make_constraints());
         // A failed Newton solve is retried with a smaller step, like a position check below.
-        const NewtonSolver::Result result  = solve_time_step(stats);
+        const NewtonSolver::Result result  = solve_time_step();
         std::string                failure = result.message;
         const std::string when = "At t = " + std::to_string(time.time() + time.next_step()) +
                                  " (step " + std::to_string(time.step_number() + 1) +
@@ -78,7 +78,7 @@ namespace fdparticle
   }
 
   template <int dim>
-  NewtonSolver::Result Simulation<dim>::solve_time_step(StepStatistics &stats)
+  NewtonSolver::Result Simulation<dim>::solve_time_step()
   {
     const auto c = time.coefficients();
     system.blocks.mass_coefficient = fluid.density * c[0];
@@ -103,15 +103,8 @@ namespace fdparticle
       TimerOutput::Scope t(*timer, with_jacobian ? "assemble system" : "assemble residual");
       last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
                                           update_constraints, with_jacobian, system);
-      for (unsigned int k = 0; k < particles.size(); ++k)
-        particles[k].contact_force = Tensor<1, dim>();
-      if (repulsion.enabled())
-        repulsion.add_to_particle_rows(particles, c, system.r_p,
-                                       with_jacobian ? &system.D : nullptr);
-      collisions.add_to_particle_rows(particles, c, system.r_p,
-                                      with_jacobian ? &system.D : nullptr);
-      lubrication.add_to_particle_rows(particles, c, system.r_p,
-                                       with_jacobian ? &system.D : nullptr);
+      interactions.add_to_particle_rows(particles, c, system.r_p,
+                                        with_jacobian ? &system.D : nullptr);
       if (with_jacobian)
         {
           linear_solver->operator_changed();
@@ -142,15 +135,15 @@ namespace fdparticle
     problem.describe_residual = [&]() { return describe_residual(); };
 
     const NewtonSolver::Result result = newton.solve(problem);
-    stats.initial_residual            = result.initial_residual;
+    statistics.set("initial_residual", result.initial_residual);
     if (result.converged())
       {
-        stats.nonlinear_iterations = result.iterations;
-        stats.linear_iterations    = result.linear_iterations;
-        stats.inner_iterations     = inner_iterations;
-        stats.jacobians            = jacobians;
-        stats.solver_setups        = solver_setups;
-        stats.residual             = result.residual;
+        statistics.set("nonlinear_iterations", result.iterations);
+        statistics.set("linear_iterations", result.linear_iterations);
+        statistics.set("inner_iterations", inner_iterations);
+        statistics.set("jacobians", jacobians);
+        statistics.set("solver_setups", solver_setups);
+        statistics.set("residual", result.residual);
         update_particle_forces(last_integrals);
       }
     return result;
@@ -227,13 +220,8 @@ namespace fdparticle
     return s.str();
   }
 
-  // The members defined in this file, for both dimensions.
-  template void Simulation<2>::do_time_step(StepStatistics &);
-  template NewtonSolver::Result Simulation<2>::solve_time_step(StepStatistics &);
-  template void Simulation<2>::update_particle_forces(const std::vector<ParticleIntegrals<2>> &);
-  template std::string Simulation<2>::describe_residual() const;
-  template void Simulation<3>::do_time_step(StepStatistics &);
-  template NewtonSolver::Result Simulation<3>::solve_time_step(StepStatistics &);
-  template void Simulation<3>::update_particle_forces(const std::vector<ParticleIntegrals<3>> &);
-  template std::string Simulation<3>::describe_residual() const;
+  // The members defined in this file, for both dimensions (an explicit instantiation of a
+  // class instantiates the members defined where it stands).
+  template class Simulation<2>;
+  template class Simulation<3>;
 } // namespace fdparticle

@@ -1,4 +1,4 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/fem/assembly/cut_cell_penalties.h>
 
 #include <cmath>
@@ -78,7 +78,7 @@ namespace fdparticle
     // or the particle leaks in proportion to Δt (as it does with the weight α + μ/R²).
     // For α ≫ μ/R² it is sκ, a fixed fraction of the pairing
     // (doc/method.md §4, "Fluid penalty" and "Pairing viscous weight").
-    const double R = particles[nearest_surface].radius;
+    const double R = particles[nearest_surface].bounding_radius();
     const double kappa = s.pairing_weight(R);
     const double fluid_weight = ramp * fluid_penalty * kappa * kappa / (s.alpha + mu / (R * R)) * JxW;
     // Strain penalty s_e μ (2ε(λ), ε(η)): softens the rigidity of λ DoFs that live mostly

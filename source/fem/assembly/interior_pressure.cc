@@ -1,4 +1,4 @@
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/fem/assembly/interior_pressure.h>
 
 namespace fdparticle

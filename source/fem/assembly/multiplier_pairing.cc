@@ -16,7 +16,7 @@ namespace fdparticle
     using RB = RigidBody<dim>;
     const Particle<dim> &            P = particles[k];
     const double                     mu = fluid.viscosity, JxW = s.JxW;
-    const double                     kappa = s.pairing_weight(P.radius);
+    const double                     kappa = s.pairing_weight(P.bounding_radius());
     const auto &                     N = s.N;
     const auto &                     dN = s.dN;
     const std::vector<unsigned int> &comp = s.component;
@@ -107,7 +107,7 @@ namespace fdparticle
       if (s.owners[q] >= 0)
         {
           const double root = std::sqrt(s.weights[q]);
-          const double root_kappa = std::sqrt(s.pairing_weight(particles[s.owners[q]].radius));
+          const double root_kappa = std::sqrt(s.pairing_weight(particles[s.owners[q]].bounding_radius()));
           for (unsigned int k = 0; k < nc; ++k)
             weighted.push_back((k < nf ? root_kappa : root_mu) * root * V.row(q)[k]);
         }

@@ -1,7 +1,7 @@
 #ifndef fdparticle_fem_assembly_fluid_momentum_h
 #define fdparticle_fem_assembly_fluid_momentum_h
 
-#include <fdparticle/core/fluid.h>
+#include <fdparticle/base/fluid.h>
 #include <fdparticle/fem/assembly/assembly_term.h>
 
 namespace fdparticle

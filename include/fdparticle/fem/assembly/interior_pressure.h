@@ -3,7 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <fdparticle/core/fluid.h>
+#include <fdparticle/base/fluid.h>
 #include <fdparticle/fem/assembly/assembly_term.h>
 
 namespace fdparticle

@@ -1,7 +1,7 @@
 #ifndef fdparticle_fem_assembly_particle_equations_h
 #define fdparticle_fem_assembly_particle_equations_h
 
-#include <fdparticle/core/fluid.h>
+#include <fdparticle/base/fluid.h>
 #include <fdparticle/fem/assembly/particle_integrals.h>
 #include <fdparticle/particles/particle_set.h>
 #include <fdparticle/solvers/newton_system.h>

@@ -1,5 +1,5 @@
-#ifndef fdparticle_core_time_stepper_h
-#define fdparticle_core_time_stepper_h
+#ifndef fdparticle_base_time_stepper_h
+#define fdparticle_base_time_stepper_h
 
 #include <deal.II/base/parameter_handler.h>
 

@@ -1,10 +1,10 @@
 #include <fdparticle/solvers/direct_solver.h>
 #include <fdparticle/solvers/iterative_solver.h>
-#include <fdparticle/solvers/linear_solver.h>
+#include <fdparticle/solvers/linear_solver_factory.h>
 
 namespace fdparticle
 {
-  void LinearSolver::declare_parameters(ParameterHandler &prm)
+  void declare_linear_solver_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Solver");
     {
@@ -25,7 +25,7 @@ namespace fdparticle
     IterativeSolver::declare_parameters(prm);
   }
 
-  std::unique_ptr<LinearSolver> LinearSolver::create(ParameterHandler &prm,
+  std::unique_ptr<LinearSolver> create_linear_solver(ParameterHandler &            prm,
                                                      const types::global_dof_index unknowns)
   {
     prm.enter_subsection("Solver");

@@ -1,5 +1,5 @@
-#ifndef fdparticle_core_fluid_h
-#define fdparticle_core_fluid_h
+#ifndef fdparticle_base_fluid_h
+#define fdparticle_base_fluid_h
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>

@@ -1,6 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/parameter_tools.h>
 
 #include <cctype>
 #include <cmath>

@@ -1,5 +1,5 @@
-#include <fdparticle/core/parameter_tools.h>
-#include <fdparticle/core/time_stepper.h>
+#include <fdparticle/base/parameter_tools.h>
+#include <fdparticle/base/time_stepper.h>
 
 #include <algorithm>
 #include <cmath>

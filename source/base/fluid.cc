@@ -1,5 +1,5 @@
-#include <fdparticle/core/fluid.h>
-#include <fdparticle/core/parameter_tools.h>
+#include <fdparticle/base/fluid.h>
+#include <fdparticle/base/parameter_tools.h>
 
 namespace fdparticle
 {

@@ -1,5 +1,5 @@
-#ifndef fdparticle_core_parameter_tools_h
-#define fdparticle_core_parameter_tools_h
+#ifndef fdparticle_base_parameter_tools_h
+#define fdparticle_base_parameter_tools_h
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
