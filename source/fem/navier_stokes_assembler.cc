@@ -112,7 +112,7 @@ namespace fdparticle
     const DoFHandler<dim> &dof_handler, const TrilinosWrappers::MPI::Vector &solution,
     const TrilinosWrappers::MPI::Vector &history, const std::array<double, 3> &c,
     const AffineConstraints<double> &constraints, const bool with_matrix,
-    NewtonSystem &system) const
+    NewtonSystem &system, std::vector<FullMatrix<double>> *cut_velocity_matrices) const
   {
     using RB = RigidBody<dim>;
     // The FEValues of the scalar elements: the FE_Q that u and λ share, and the pressure's
@@ -166,6 +166,10 @@ namespace fdparticle
         blocks.velocity_mass = TrilinosWrappers::MPI::Vector(system.r_fe); // zero here
       }
     Vector<double> local_velocity_mass(n);
+    const unsigned int n_velocity = scalar_fe.n_dofs_per_cell();
+    if (cut_velocity_matrices)
+      cut_velocity_matrices->assign(dof_handler.get_triangulation().n_active_cells(),
+                                    FullMatrix<double>());
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -229,6 +233,19 @@ namespace fdparticle
               term->assemble_cell_matrix(s, copy);
           }
 
+        if (with_matrix && cut_velocity_matrices && rule.kind == CellKind::cut)
+          {
+            FullMatrix<double> &m = (*cut_velocity_matrices)[cell->active_cell_index()];
+            m.reinit(dim * n_velocity, dim * n_velocity);
+            const auto row = [&](const unsigned int c, const unsigned int a) {
+              return fe.component_to_system_index(Introspection<dim>::first_velocity_component + c, a);
+            };
+            for (unsigned int ci = 0; ci < dim; ++ci)
+              for (unsigned int a = 0; a < n_velocity; ++a)
+                for (unsigned int cj = 0; cj < dim; ++cj)
+                  for (unsigned int b = 0; b < n_velocity; ++b)
+                    m(ci * n_velocity + a, cj * n_velocity + b) = copy.matrix(row(ci, a), row(cj, b));
+          }
         cell->get_dof_indices(dof_indices);
         if (fluid_mass)
           {

@@ -7,6 +7,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <fdparticle/base/fluid.h>
@@ -63,12 +64,18 @@ namespace fdparticle
      * Assemble R (and J if with_matrix) at the iterate (solution, particle unknowns as
      * stored in the ParticleSet). history = c1 u^n + c2 u^{n−1}; c are the BDF weights.
      * Returns the particle integrals (summed over all ranks).
+     *
+     * With the matrix and cut_velocity_matrices given, it also returns the velocity block
+     * of each owned cut cell's matrix (before the constraints), indexed by the cell's
+     * active_cell_index() and ordered (component c, FE_Q shape function a) → c n + a; other
+     * cells get an empty matrix (VelocityOperator::set_cut_cell_matrices).
      */
     std::vector<ParticleIntegrals<dim>>
     assemble(const DoFHandler<dim> &dof_handler, const TrilinosWrappers::MPI::Vector &solution,
              const TrilinosWrappers::MPI::Vector &history, const std::array<double, 3> &c,
              const AffineConstraints<double> &constraints, const bool with_matrix,
-             NewtonSystem &system) const;
+             NewtonSystem &                   system,
+             std::vector<FullMatrix<double>> *cut_velocity_matrices = nullptr) const;
 
     /// Where the particles are, as the constraints of a step need it.
     struct ParticleSupport

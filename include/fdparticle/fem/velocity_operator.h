@@ -1,0 +1,97 @@
+#ifndef fdparticle_fem_velocity_operator_h
+#define fdparticle_fem_velocity_operator_h
+
+#include <deal.II/base/aligned_vector.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/vectorization.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/matrix_free/matrix_free.h>
+
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * The velocity block of the Newton matrix (doc/method.md §3, §8) applied without a
+   * matrix: for the Q2 velocity δu and test function v,
+   *
+   *   ρ c0 (δu, v) + (2μ ε(δu), ε(v)) + ρ ((w·∇)δu + (δu·∇)w, v),
+   *
+   * the last term (Newton's linearization of the convection at the iterate w) only for
+   * Navier–Stokes. It is the same bilinear form as FluidMomentum's Jacobian, evaluated by
+   * sum factorization (FEEvaluation) with the Gauss rule of the cells away from the
+   * particles. A cell cut by a particle surface has a rule of its own
+   * (CutCellQuadrature), which FEEvaluation cannot take: there the operator multiplies by
+   * the cell's matrix from the assembly instead (set_cut_cell_matrices). Constraints
+   * (hanging nodes, periodicity, walls) act as in the assembled matrix; a constrained
+   * row returns its input (the identity).
+   *
+   * Vectors are velocity-only, numbered by the velocity DoFHandler given to reinit(), an
+   * FESystem of dim FE_Q(2) on the system's mesh.
+   */
+  template <int dim>
+  class VelocityOperator
+  {
+  public:
+    using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+    /// The degree of the velocity and the Gauss points per direction of a regular cell
+    /// (Introspection::velocity_degree and cell_quadrature()).
+    static constexpr unsigned int degree = 2, n_points_1d = degree + 1;
+
+    void reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler,
+                const AffineConstraints<double> &constraints);
+
+    /// ρ, μ and the BDF weight c0 of the step; iterate: w, with the layout of
+    /// initialize_dof_vector(), for the convection term (nullptr: Stokes).
+    void set_coefficients(const double density, const double viscosity, const double c0,
+                          const VectorType *iterate);
+
+    /**
+     * The matrices of the cut cells, indexed by the cell's active_cell_index() (an empty
+     * matrix: the cell is not cut). Each is the velocity block of the cell's Jacobian in the
+     * order (component c, scalar shape function a) → c n + a, n the FE_Q's shape functions:
+     * what NavierStokesAssembler::assemble gives.
+     */
+    void set_cut_cell_matrices(std::vector<FullMatrix<double>> matrices);
+
+    void initialize_dof_vector(VectorType &v) const { matrix_free.initialize_dof_vector(v); }
+
+    /// dst = A src.
+    void vmult(VectorType &dst, const VectorType &src) const;
+
+    /// The owned cells that the operator multiplies by their matrix, over all owned cells
+    /// (summed over the ranks).
+    double cut_cell_fraction() const;
+
+    /// Bytes the operator holds (MatrixFree's index and mapping data, the iterate at the
+    /// points, the cut cells' matrices), summed over the ranks.
+    std::size_t memory_consumption() const;
+
+    const MatrixFree<dim, double> &get_matrix_free() const { return matrix_free; }
+
+  private:
+    void local_apply(const MatrixFree<dim, double> &data, VectorType &dst, const VectorType &src,
+                     const std::pair<unsigned int, unsigned int> &cell_range) const;
+
+    MatrixFree<dim, double> matrix_free;
+    double                  density = 1, viscosity = 1, c0 = 0;
+    bool                    convection = false;
+    /// w and ∇w at the quadrature points, cell batch by cell batch.
+    AlignedVector<Tensor<1, dim, VectorizedArray<double>>> iterate_values;
+    AlignedVector<Tensor<2, dim, VectorizedArray<double>>> iterate_gradients;
+    /// See set_cut_cell_matrices(); the position in FEEvaluation's values of each row.
+    std::vector<FullMatrix<double>> cut_matrices;
+    std::vector<unsigned int>       matrix_row_of_evaluation_index;
+    /// Per cell batch: its cell is cut (FEEvaluation's batches hold one cell here).
+    std::vector<bool> batch_is_cut;
+  };
+} // namespace fdparticle
+
+#endif

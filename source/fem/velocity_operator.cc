@@ -1,0 +1,166 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/matrix_free/fe_evaluation.h>
+
+#include <fdparticle/fem/velocity_operator.h>
+
+namespace fdparticle
+{
+  namespace
+  {
+    template <int dim>
+    using Evaluation =
+      FEEvaluation<dim, VelocityOperator<dim>::degree, VelocityOperator<dim>::n_points_1d, dim, double>;
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler,
+                                     const AffineConstraints<double> &constraints)
+  {
+    // A cut cell is multiplied by its matrix, cell by cell: each batch must hold one cell.
+    // Debian's deal.II is built without SIMD (VectorizedArray<double> has one lane).
+    AssertThrow(VectorizedArray<double>::size() == 1,
+                ExcMessage("VelocityOperator needs deal.II's VectorizedArray<double> to hold "
+                           "one number (a build without SIMD)."));
+    typename MatrixFree<dim, double>::AdditionalData data;
+    data.tasks_parallel_scheme = MatrixFree<dim, double>::AdditionalData::none;
+    data.mapping_update_flags  = update_values | update_gradients | update_JxW_values;
+    matrix_free.reinit(mapping, dof_handler, constraints, QGauss<1>(n_points_1d), data);
+
+    // FEEvaluation holds the values component by component, each lexicographic; the cut
+    // cells' matrices are ordered (component, FE_Q shape function).
+    const FiniteElement<dim> &fe = dof_handler.get_fe();
+    const auto &lexicographic = matrix_free.get_shape_info().lexicographic_numbering;
+    matrix_row_of_evaluation_index.resize(fe.n_dofs_per_cell());
+    const unsigned int n = fe.base_element(0).n_dofs_per_cell();
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      {
+        const auto [c, a] = fe.system_to_component_index(lexicographic[i]);
+        matrix_row_of_evaluation_index[i] = c * n + a;
+      }
+    batch_is_cut.assign(matrix_free.n_cell_batches(), false);
+    cut_matrices.clear();
+    convection = false;
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::set_coefficients(const double density, const double viscosity,
+                                               const double c0, const VectorType *iterate)
+  {
+    this->density   = density;
+    this->viscosity = viscosity;
+    this->c0        = c0;
+    convection      = (iterate != nullptr);
+    if (!convection)
+      {
+        iterate_values.clear();
+        iterate_gradients.clear();
+        return;
+      }
+    iterate->update_ghost_values();
+    Evaluation<dim>    phi(matrix_free);
+    const unsigned int nq = phi.n_q_points;
+    iterate_values.resize(matrix_free.n_cell_batches() * nq);
+    iterate_gradients.resize(matrix_free.n_cell_batches() * nq);
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        phi.read_dof_values_plain(*iterate);
+        phi.evaluate(EvaluationFlags::values | EvaluationFlags::gradients);
+        for (unsigned int q = 0; q < nq; ++q)
+          {
+            iterate_values[cell * nq + q]    = phi.get_value(q);
+            iterate_gradients[cell * nq + q] = phi.get_gradient(q);
+          }
+      }
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::set_cut_cell_matrices(std::vector<FullMatrix<double>> matrices)
+  {
+    cut_matrices = std::move(matrices);
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
+      {
+        const unsigned int index = matrix_free.get_cell_iterator(cell, 0)->active_cell_index();
+        batch_is_cut[cell] = index < cut_matrices.size() && cut_matrices[index].m() > 0;
+        Assert(!batch_is_cut[cell] ||
+                 cut_matrices[index].m() == matrix_row_of_evaluation_index.size(),
+               ExcDimensionMismatch(cut_matrices[index].m(), matrix_row_of_evaluation_index.size()));
+      }
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::local_apply(const MatrixFree<dim, double> &data, VectorType &dst,
+                                          const VectorType &                           src,
+                                          const std::pair<unsigned int, unsigned int> &cell_range) const
+  {
+    using Number = VectorizedArray<double>;
+    Evaluation<dim>    phi(data);
+    const unsigned int nq = phi.n_q_points, n = phi.dofs_per_cell;
+    Vector<double>     local_src(n), local_dst(n);
+    const Number       mass = density * c0;
+    for (unsigned int cell = cell_range.first; cell < cell_range.second; ++cell)
+      {
+        phi.reinit(cell);
+        if (batch_is_cut[cell])
+          {
+            // The cell's matrix on the values after the constraints, as FEEvaluation
+            // would integrate them.
+            phi.read_dof_values(src);
+            for (unsigned int i = 0; i < n; ++i)
+              local_src[matrix_row_of_evaluation_index[i]] = phi.begin_dof_values()[i][0];
+            cut_matrices[data.get_cell_iterator(cell, 0)->active_cell_index()].vmult(local_dst,
+                                                                                     local_src);
+            for (unsigned int i = 0; i < n; ++i)
+              phi.begin_dof_values()[i] = local_dst[matrix_row_of_evaluation_index[i]];
+            phi.distribute_local_to_global(dst);
+            continue;
+          }
+        phi.gather_evaluate(src, EvaluationFlags::values | EvaluationFlags::gradients);
+        for (unsigned int q = 0; q < nq; ++q)
+          {
+            const Tensor<1, dim, Number> u  = phi.get_value(q);
+            const Tensor<2, dim, Number> gu = phi.get_gradient(q);
+            Tensor<1, dim, Number>       value = mass * u;
+            if (convection)
+              value += density * (gu * iterate_values[cell * nq + q] +
+                                  iterate_gradients[cell * nq + q] * u);
+            phi.submit_value(value, q);
+            phi.submit_gradient(viscosity * (gu + transpose(gu)), q);
+          }
+        phi.integrate_scatter(EvaluationFlags::values | EvaluationFlags::gradients, dst);
+      }
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::vmult(VectorType &dst, const VectorType &src) const
+  {
+    matrix_free.cell_loop(&VelocityOperator::local_apply, this, dst, src, true);
+    for (const unsigned int i : matrix_free.get_constrained_dofs())
+      dst.local_element(i) = src.local_element(i);
+  }
+
+  template <int dim>
+  double VelocityOperator<dim>::cut_cell_fraction() const
+  {
+    const MPI_Comm comm = matrix_free.get_vector_partitioner()->get_mpi_communicator();
+    double         counts[2] = {0, double(matrix_free.n_physical_cells())};
+    for (const bool cut : batch_is_cut)
+      counts[0] += cut;
+    Utilities::MPI::sum(ArrayView<const double>(counts, 2), comm, ArrayView<double>(counts, 2));
+    return counts[1] > 0 ? counts[0] / counts[1] : 0.0;
+  }
+
+  template <int dim>
+  std::size_t VelocityOperator<dim>::memory_consumption() const
+  {
+    std::size_t bytes = matrix_free.memory_consumption() + iterate_values.memory_consumption() +
+                        iterate_gradients.memory_consumption();
+    for (const auto &m : cut_matrices)
+      bytes += m.memory_consumption();
+    return Utilities::MPI::sum(bytes, matrix_free.get_vector_partitioner()->get_mpi_communicator());
+  }
+
+  template class VelocityOperator<2>;
+  template class VelocityOperator<3>;
+} // namespace fdparticle

@@ -1,0 +1,235 @@
+// Unit test of fdparticle::VelocityOperator (include/fdparticle/fem/velocity_operator.h):
+// the matrix-free velocity block equals the velocity block of the Jacobian that
+// NavierStokesAssembler assembles, A_uu x, on the unconstrained rows, to 1e-12 of |A_uu x|.
+// Scenes: 2D and 3D boxes with a periodic direction and walls, a mesh refined around a
+// sphere (hanging nodes), the sphere cutting cells; Stokes and Navier–Stokes (Newton's
+// convection at a random iterate), the Gauss and the level-set cut-cell rules.
+// test-ranks: 1 2
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <fdparticle/base/fluid.h>
+#include <fdparticle/base/time_stepper.h>
+#include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/block_numbering.h>
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/fem/introspection.h>
+#include <fdparticle/fem/navier_stokes_assembler.h>
+#include <fdparticle/fem/velocity_operator.h>
+
+#include "unit_check.h"
+
+#include <random>
+#include <string>
+
+using namespace dealii;
+using namespace fdparticle;
+using namespace unit_check;
+
+namespace
+{
+  template <int dim>
+  std::string scene(const bool convection, const std::string &cut_cells)
+  {
+    const std::string centre = (dim == 2 ? "0.43, 0.52" : "0.43, 0.52, 0.47");
+    return unit_box_parameters<dim>(4) +
+           "subsection Geometry\n  set Periodic directions = x\nend\n"
+           "subsection Boundary conditions\n  set Wall velocities = y+: " +
+           std::string(dim == 2 ? "1, 0" : "1, 0, 0") +
+           "\nend\n"
+           "subsection Fluid\n  set Density = 1.3\n  set Viscosity = 0.07\n"
+           "  set Convection = " +
+           (convection ? "true" : "false") +
+           "\nend\n"
+           "subsection Particles\n  set Particles = " +
+           centre +
+           " : 0.2 : 2 : fixed\nend\n"
+           "subsection Quadrature\n  set Cut cells = " +
+           cut_cells +
+           "\nend\n"
+           "subsection Time\n  set Time step = 0.01\nend\n";
+  }
+
+  template <int dim>
+  void check_scene(const bool convection, const std::string &cut_cells)
+  {
+    const MPI_Comm   comm = MPI_COMM_WORLD;
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    prm.parse_input_from_string(scene<dim>(convection, cut_cells));
+    Domain<dim> domain;
+    domain.parse_parameters(prm);
+    Fluid<dim> fluid;
+    fluid.parse_parameters(prm);
+    for (unsigned int d = 0; d < dim; ++d)
+      fluid.periodic[d] = domain.is_periodic(d);
+    ParticleSet<dim> particles;
+    particles.parse_parameters(prm, domain, comm);
+    TimeStepper time;
+    time.parse_parameters(prm);
+    particles.prepare_step(time);
+    CutCellQuadrature<dim> quadrature;
+    quadrature.parse_parameters(prm);
+
+    // The base mesh, refined twice around the sphere: cut cells, hanging nodes.
+    parallel::distributed::Triangulation<dim> tria(comm);
+    domain.create_mesh(tria);
+    for (unsigned int pass = 0; pass < 2; ++pass)
+      {
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              cell->center().distance(particles[0].position) < 0.2 + cell->diameter())
+            cell->set_refine_flag();
+        tria.execute_coarsening_and_refinement();
+      }
+
+    // The system: u | λ | p, its constraints and the Jacobian.
+    const FESystem<dim> fe = Introspection<dim>::finite_element();
+    DoFHandler<dim>     dof_handler(tria);
+    dof_handler.distribute_dofs(fe);
+    NewtonSystem system;
+    number_dofs_by_block(dof_handler, false, system.blocks);
+    const IndexSet owned = dof_handler.locally_owned_dofs();
+    IndexSet       relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    AffineConstraints<double> constraints(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    domain.make_periodicity_constraints(dof_handler, constraints);
+    domain.make_wall_constraints(dof_handler, fe.component_mask(Introspection<dim>::velocities()),
+                                 true, constraints);
+    constraints.close();
+    TrilinosWrappers::SparsityPattern sparsity(owned, owned, relevant, comm);
+    DoFTools::make_sparsity_pattern(dof_handler, sparsity, constraints, false,
+                                    Utilities::MPI::this_mpi_process(comm));
+    sparsity.compress();
+    system.reinit(owned, relevant, sparsity, true,
+                  NewtonSystem::border_pattern(owned, relevant, 0, comm), comm);
+
+    // A random iterate (u only) and a random x, both in the constrained space.
+    std::mt19937                           random(17 + dim);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    const auto random_velocity = [&]() {
+      TrilinosWrappers::MPI::Vector v(owned, comm);
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              if (Introspection<dim>::field(fe.system_to_component_index(i).first) ==
+                    Introspection<dim>::Field::velocity &&
+                  owned.is_element(dofs[i]))
+                v[dofs[i]] = uniform(random);
+          }
+      v.compress(VectorOperation::insert);
+      constraints.distribute(v);
+      TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
+      ghosted = v;
+      return std::make_pair(v, ghosted);
+    };
+    const auto [iterate, iterate_ghosted] = random_velocity();
+    const auto [x, x_ghosted]             = random_velocity();
+    TrilinosWrappers::MPI::Vector history(owned, relevant, comm);
+    const std::array<double, 3>   c = time.coefficients();
+    NavierStokesAssembler<dim>    assembler(fe, fluid, particles, quadrature);
+    assembler.parse_parameters(prm);
+    std::vector<FullMatrix<double>> cut_matrices;
+    assembler.assemble(dof_handler, iterate_ghosted, history, c, constraints, true, system,
+                       &cut_matrices);
+    TrilinosWrappers::MPI::Vector y(owned, comm);
+    system.A.vmult(y, x);
+
+    // The velocity-only DoFs on the same mesh with the same constraints, and the operator.
+    const FESystem<dim> velocity_fe(FE_Q<dim>(Introspection<dim>::velocity_degree), dim);
+    DoFHandler<dim>     velocity_dofs(tria);
+    velocity_dofs.distribute_dofs(velocity_fe);
+    IndexSet velocity_relevant;
+    DoFTools::extract_locally_relevant_dofs(velocity_dofs, velocity_relevant);
+    AffineConstraints<double> velocity_constraints(velocity_relevant);
+    DoFTools::make_hanging_node_constraints(velocity_dofs, velocity_constraints);
+    domain.make_periodicity_constraints(velocity_dofs, velocity_constraints);
+    domain.make_wall_constraints(velocity_dofs, ComponentMask(dim, true), true,
+                                 velocity_constraints);
+    velocity_constraints.close();
+    VelocityOperator<dim> op;
+    op.reinit(assembler.get_mapping(), velocity_dofs, velocity_constraints);
+
+    // Each owned velocity DoF's number in the system, from the cells both numberings share.
+    using Vector = typename VelocityOperator<dim>::VectorType;
+    Vector x_u, w_u, y_u;
+    op.initialize_dof_vector(x_u);
+    op.initialize_dof_vector(w_u);
+    op.initialize_dof_vector(y_u);
+    std::vector<std::pair<types::global_dof_index, types::global_dof_index>> pairs;
+    std::vector<types::global_dof_index> system_dofs(fe.n_dofs_per_cell()),
+      own_dofs(velocity_fe.n_dofs_per_cell());
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          typename DoFHandler<dim>::active_cell_iterator(&tria, cell->level(), cell->index(),
+                                                         &dof_handler)
+            ->get_dof_indices(system_dofs);
+          typename DoFHandler<dim>::active_cell_iterator(&tria, cell->level(), cell->index(),
+                                                         &velocity_dofs)
+            ->get_dof_indices(own_dofs);
+          for (unsigned int comp = 0; comp < dim; ++comp)
+            for (unsigned int a = 0; a < velocity_fe.base_element(0).n_dofs_per_cell(); ++a)
+              {
+                const auto v = own_dofs[velocity_fe.component_to_system_index(comp, a)];
+                const auto s = system_dofs[fe.component_to_system_index(comp, a)];
+                if (x_u.locally_owned_elements().is_element(v))
+                  pairs.emplace_back(v, s);
+              }
+        }
+    bool same_owner = true;
+    for (const auto &[v, s] : pairs)
+      {
+        same_owner = same_owner && owned.is_element(s);
+        x_u[v] = x[s];
+        w_u[v] = iterate[s];
+      }
+    check(Utilities::MPI::min(int(same_owner), comm) == 1,
+          "a velocity DoF has the same owner in both numberings");
+
+    op.set_coefficients(fluid.density, fluid.viscosity, c[0], fluid.convection ? &w_u : nullptr);
+    op.set_cut_cell_matrices(cut_matrices);
+    op.vmult(y_u, x_u);
+
+    double largest = 0, difference = 0;
+    for (const auto &[v, s] : pairs)
+      if (!velocity_constraints.is_constrained(v) && !constraints.is_constrained(s))
+        {
+          largest    = std::max(largest, std::abs(y[s]));
+          difference = std::max(difference, std::abs(y[s] - y_u[v]));
+        }
+    largest    = Utilities::MPI::max(largest, comm);
+    difference = Utilities::MPI::max(difference, comm);
+    const double cut_fraction = op.cut_cell_fraction();
+    const std::string what = std::to_string(dim) + "D " + (convection ? "Navier-Stokes" : "Stokes") +
+                             ", " + cut_cells + " cut cells";
+    check(cut_fraction > 0 && cut_fraction < 0.5,
+          what + ": some cells are cut, most are not (cut fraction " + std::to_string(cut_fraction) +
+            ")");
+    check(largest > 0 && difference <= 1e-12 * largest,
+          what + ": matrix-free A_uu x equals the assembled one",
+          "max difference " + std::to_string(difference) + " of max |A_uu x| " +
+            std::to_string(largest));
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  for (const bool convection : {false, true})
+    for (const std::string cut_cells : {"gauss", "level set"})
+      {
+        check_scene<2>(convection, cut_cells);
+        check_scene<3>(convection, cut_cells);
+      }
+  return summary();
+}
