@@ -2,7 +2,10 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/matrix_free/fe_evaluation.h>
 
+#include <fdparticle/fem/q2_cell_kernel.h>
 #include <fdparticle/fem/velocity_operator.h>
+
+#include <array>
 
 namespace fdparticle
 {
@@ -41,6 +44,27 @@ namespace fdparticle
     batch_is_cut.assign(matrix_free.n_cell_batches(), false);
     cut_matrices.clear();
     convection = false;
+
+    // The cells are axis-aligned boxes: Q2CellKernel needs 1/h per direction and the volume.
+    Evaluation<dim> phi(matrix_free);
+    cell_inverse_lengths.resize(matrix_free.n_cell_batches() * dim);
+    cell_volumes.resize(matrix_free.n_cell_batches());
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        const auto inverse_jacobian = phi.inverse_jacobian(0);
+        double     volume = 0;
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          volume += phi.JxW(q)[0];
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            for (unsigned int e = 0; e < dim; ++e)
+              AssertThrow(e == d || inverse_jacobian[d][e][0] == 0,
+                          ExcMessage("VelocityOperator needs axis-aligned box cells."));
+            cell_inverse_lengths[cell * dim + d] = inverse_jacobian[d][d][0];
+          }
+        cell_volumes[cell] = volume;
+      }
   }
 
   template <int dim>
@@ -94,19 +118,50 @@ namespace fdparticle
                                           const VectorType &                           src,
                                           const std::pair<unsigned int, unsigned int> &cell_range) const
   {
-    using Number = VectorizedArray<double>;
-    Evaluation<dim>    phi(data);
-    const unsigned int nq = phi.n_q_points, n = phi.dofs_per_cell;
-    Vector<double>     local_src(n), local_dst(n);
-    const Number       mass = density * c0;
+    using Kernel           = Q2CellKernel<dim>;
+    constexpr unsigned int L = Kernel::lanes;
+    Evaluation<dim>        phi(data);
+    const unsigned int     nq = phi.n_q_points, n = phi.dofs_per_cell;
+    Assert(n == dim * Kernel::n_dofs && nq == Kernel::n_points, ExcInternalError());
+    Vector<double>      local_src(n), local_dst(n);
+    std::vector<double> in(n * L), out(n * L), lengths(dim * L), volumes(L),
+      w(convection ? nq * dim * L : 0), grad_w(convection ? nq * dim * dim * L : 0);
+    std::array<unsigned int, L> batch;
+    unsigned int                n_batch = 0;
+
+    // The cells gathered so far through the kernel, lanes beyond them empty.
+    const auto flush = [&]() {
+      if (n_batch == 0)
+        return;
+      for (unsigned int l = n_batch; l < L; ++l)
+        {
+          for (unsigned int i = 0; i < n; ++i)
+            in[i * L + l] = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            lengths[d * L + l] = 1;
+          volumes[l] = 0;
+        }
+      Kernel::apply(in.data(), out.data(), lengths.data(), volumes.data(),
+                    convection ? w.data() : nullptr, convection ? grad_w.data() : nullptr,
+                    density * c0, density, viscosity);
+      for (unsigned int l = 0; l < n_batch; ++l)
+        {
+          phi.reinit(batch[l]);
+          for (unsigned int i = 0; i < n; ++i)
+            phi.begin_dof_values()[i] = out[i * L + l];
+          phi.distribute_local_to_global(dst);
+        }
+      n_batch = 0;
+    };
+
     for (unsigned int cell = cell_range.first; cell < cell_range.second; ++cell)
       {
         phi.reinit(cell);
+        phi.read_dof_values(src);
         if (batch_is_cut[cell])
           {
             // The cell's matrix on the values after the constraints, as FEEvaluation
             // would integrate them.
-            phi.read_dof_values(src);
             for (unsigned int i = 0; i < n; ++i)
               local_src[matrix_row_of_evaluation_index[i]] = phi.begin_dof_values()[i][0];
             cut_matrices[data.get_cell_iterator(cell, 0)->active_cell_index()].vmult(local_dst,
@@ -116,20 +171,26 @@ namespace fdparticle
             phi.distribute_local_to_global(dst);
             continue;
           }
-        phi.gather_evaluate(src, EvaluationFlags::values | EvaluationFlags::gradients);
-        for (unsigned int q = 0; q < nq; ++q)
-          {
-            const Tensor<1, dim, Number> u  = phi.get_value(q);
-            const Tensor<2, dim, Number> gu = phi.get_gradient(q);
-            Tensor<1, dim, Number>       value = mass * u;
-            if (convection)
-              value += density * (gu * iterate_values[cell * nq + q] +
-                                  iterate_gradients[cell * nq + q] * u);
-            phi.submit_value(value, q);
-            phi.submit_gradient(viscosity * (gu + transpose(gu)), q);
-          }
-        phi.integrate_scatter(EvaluationFlags::values | EvaluationFlags::gradients, dst);
+        const unsigned int l = n_batch;
+        for (unsigned int i = 0; i < n; ++i)
+          in[i * L + l] = phi.begin_dof_values()[i][0];
+        for (unsigned int d = 0; d < dim; ++d)
+          lengths[d * L + l] = cell_inverse_lengths[cell * dim + d];
+        volumes[l] = cell_volumes[cell];
+        if (convection)
+          for (unsigned int q = 0; q < nq; ++q)
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                w[(q * dim + c) * L + l] = iterate_values[cell * nq + q][c][0];
+                for (unsigned int e = 0; e < dim; ++e)
+                  grad_w[((q * dim + c) * dim + e) * L + l] =
+                    iterate_gradients[cell * nq + q][c][e][0];
+              }
+        batch[n_batch++] = cell;
+        if (n_batch == L)
+          flush();
       }
+    flush();
   }
 
   template <int dim>

@@ -25,8 +25,9 @@ namespace fdparticle
    *
    * the last term (Newton's linearization of the convection at the iterate w) only for
    * Navier–Stokes. It is the same bilinear form as FluidMomentum's Jacobian, evaluated by
-   * sum factorization (FEEvaluation) with the Gauss rule of the cells away from the
-   * particles. A cell cut by a particle surface has a rule of its own
+   * sum factorization with the Gauss rule of the cells away from the particles: MatrixFree
+   * gathers and scatters each cell's values through the constraints, Q2CellKernel
+   * integrates several cells at once in the lanes of the machine's vector registers. A cell cut by a particle surface has a rule of its own
    * (CutCellQuadrature), which FEEvaluation cannot take: there the operator multiplies by
    * the cell's matrix from the assembly instead (set_cut_cell_matrices). Constraints
    * (hanging nodes, periodicity, walls) act as in the assembled matrix; a constrained
@@ -91,6 +92,8 @@ namespace fdparticle
     std::vector<unsigned int>       matrix_row_of_evaluation_index;
     /// Per cell batch: its cell is cut (FEEvaluation's batches hold one cell here).
     std::vector<bool> batch_is_cut;
+    /// Per cell: 1/h in each direction, and the volume (Q2CellKernel).
+    std::vector<double> cell_inverse_lengths, cell_volumes;
   };
 } // namespace fdparticle
 
