@@ -18,7 +18,8 @@ namespace fdparticle
 
   template <int dim>
   void VelocityOperator<dim>::reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler,
-                                     const AffineConstraints<double> &constraints)
+                                     const AffineConstraints<double> &constraints,
+                                     const unsigned int               level)
   {
     // A cut cell is multiplied by its matrix, cell by cell: each batch must hold one cell.
     // Debian's deal.II is built without SIMD (VectorizedArray<double> has one lane).
@@ -28,6 +29,7 @@ namespace fdparticle
     typename MatrixFree<dim, double>::AdditionalData data;
     data.tasks_parallel_scheme = MatrixFree<dim, double>::AdditionalData::none;
     data.mapping_update_flags  = update_values | update_gradients | update_JxW_values;
+    data.mg_level              = level;
     matrix_free.reinit(mapping, dof_handler, constraints, QGauss<1>(n_points_1d), data);
 
     // FEEvaluation holds the values component by component, each lexicographic; the cut
@@ -199,6 +201,89 @@ namespace fdparticle
     matrix_free.cell_loop(&VelocityOperator::local_apply, this, dst, src, true);
     for (const unsigned int i : matrix_free.get_constrained_dofs())
       dst.local_element(i) = src.local_element(i);
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::compute_diagonal(VectorType &diagonal) const
+  {
+    matrix_free.initialize_dof_vector(diagonal);
+    Evaluation<dim>    phi(matrix_free);
+    const unsigned int nq = phi.n_q_points, n = phi.dofs_per_cell, n_scalar = n / dim;
+    // The scalar Q2 functions and their reference gradients at the Gauss points, from
+    // one cell's evaluation of unit vectors (the same on every axis-aligned cell up to 1/h).
+    std::vector<double>         value(n_scalar * nq);
+    std::vector<Tensor<1, dim>> reference_gradient(n_scalar * nq);
+    phi.reinit(0);
+    for (unsigned int i = 0; i < n_scalar; ++i)
+      {
+        for (unsigned int k = 0; k < n; ++k)
+          phi.begin_dof_values()[k] = (k == i ? 1.0 : 0.0);
+        phi.evaluate(EvaluationFlags::values | EvaluationFlags::gradients);
+        for (unsigned int q = 0; q < nq; ++q)
+          {
+            value[i * nq + q] = phi.get_value(q)[0][0];
+            for (unsigned int d = 0; d < dim; ++d)
+              reference_gradient[i * nq + q][d] =
+                phi.get_gradient(q)[0][d][0] / cell_inverse_lengths[d];
+          }
+      }
+    Vector<double> local(n);
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        if (batch_is_cut[cell])
+          {
+            const FullMatrix<double> &m =
+              cut_matrices[matrix_free.get_cell_iterator(cell, 0)->active_cell_index()];
+            for (unsigned int k = 0; k < n; ++k)
+              phi.begin_dof_values()[k] =
+                m(matrix_row_of_evaluation_index[k], matrix_row_of_evaluation_index[k]);
+            phi.distribute_local_to_global(diagonal);
+            continue;
+          }
+        for (unsigned int c = 0; c < dim; ++c)
+          for (unsigned int i = 0; i < n_scalar; ++i)
+            {
+              double sum = 0;
+              for (unsigned int q = 0; q < nq; ++q)
+                {
+                  const double JxW = phi.JxW(q)[0], N = value[i * nq + q];
+                  Tensor<1, dim> dN;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    dN[d] = reference_gradient[i * nq + q][d] * cell_inverse_lengths[cell * dim + d];
+                  double a = density * c0 * N * N + viscosity * (dN * dN + dN[c] * dN[c]);
+                  if (convection)
+                    {
+                      double w_grad = 0;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        w_grad += iterate_values[cell * nq + q][d][0] * dN[d];
+                      a += density * N * (w_grad + iterate_gradients[cell * nq + q][c][c][0] * N);
+                    }
+                  sum += a * JxW;
+                }
+              phi.begin_dof_values()[c * n_scalar + i] = sum;
+            }
+        phi.distribute_local_to_global(diagonal);
+      }
+    diagonal.compress(VectorOperation::add);
+    for (const unsigned int i : matrix_free.get_constrained_dofs())
+      diagonal.local_element(i) = 1;
+    diagonal_entries = diagonal;
+  }
+
+  template <int dim>
+  double VelocityOperator<dim>::el(const types::global_dof_index i,
+                                   const types::global_dof_index j) const
+  {
+    AssertThrow(i == j && diagonal_entries.size() == m(),
+                ExcMessage("VelocityOperator::el gives the diagonal after compute_diagonal()."));
+    return diagonal_entries(i);
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::Tvmult(VectorType &, const VectorType &) const
+  {
+    AssertThrow(false, ExcMessage("VelocityOperator has no transpose product."));
   }
 
   template <int dim>

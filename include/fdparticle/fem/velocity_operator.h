@@ -2,6 +2,7 @@
 #define fdparticle_fem_velocity_operator_h
 
 #include <deal.II/base/aligned_vector.h>
+#include <deal.II/base/subscriptor.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/vectorization.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -37,7 +38,7 @@ namespace fdparticle
    * FESystem of dim FE_Q(2) on the system's mesh.
    */
   template <int dim>
-  class VelocityOperator
+  class VelocityOperator : public Subscriptor
   {
   public:
     using VectorType = LinearAlgebra::distributed::Vector<double>;
@@ -46,8 +47,11 @@ namespace fdparticle
     /// (Introspection::velocity_degree and cell_quadrature()).
     static constexpr unsigned int degree = 2, n_points_1d = degree + 1;
 
+    /// On the active cells, or on the cells of a multigrid level (the DoFHandler's level
+    /// DoFs must be distributed; constraints then holds the level's constrained DoFs).
     void reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler,
-                const AffineConstraints<double> &constraints);
+                const AffineConstraints<double> &constraints,
+                const unsigned int               level = numbers::invalid_unsigned_int);
 
     /// ρ, μ and the BDF weight c0 of the step; iterate: w, with the layout of
     /// initialize_dof_vector(), for the convection term (nullptr: Stokes).
@@ -66,6 +70,19 @@ namespace fdparticle
 
     /// dst = A src.
     void vmult(VectorType &dst, const VectorType &src) const;
+
+    /// The diagonal of A (1 on constrained rows), for a Jacobi or Chebyshev smoother: each
+    /// cell's diagonal, added through the constraints (exact without hanging nodes, an
+    /// approximation on the masters of hanging nodes).
+    void compute_diagonal(VectorType &diagonal) const;
+
+    /// The number of rows, and a diagonal entry (i == j) after compute_diagonal(): what
+    /// deal.II's smoothers ask of a matrix.
+    types::global_dof_index m() const { return matrix_free.get_vector_partitioner()->size(); }
+    double                  el(const types::global_dof_index i, const types::global_dof_index j) const;
+    /// The transpose product is not available (the convection term is not symmetric);
+    /// multigrid's level-matrix interface declares it, and nothing here calls it.
+    void Tvmult(VectorType &dst, const VectorType &src) const;
 
     /// The owned cells that the operator multiplies by their matrix, over all owned cells
     /// (summed over the ranks).
@@ -94,6 +111,8 @@ namespace fdparticle
     std::vector<bool> batch_is_cut;
     /// Per cell: 1/h in each direction, and the volume (Q2CellKernel).
     std::vector<double> cell_inverse_lengths, cell_volumes;
+    /// The diagonal of the last compute_diagonal(), for el().
+    mutable VectorType diagonal_entries;
   };
 } // namespace fdparticle
 
