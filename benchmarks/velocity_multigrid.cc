@@ -135,8 +135,6 @@ int main(int argc, char **argv)
   MGConstrainedDoFs mg_constrained_dofs;
   mg_constrained_dofs.initialize(dof_handler);
   mg_constrained_dofs.make_zero_boundary_constraints(dof_handler, {0});
-  MGTransferMatrixFree<dim, double> transfer(mg_constrained_dofs);
-  transfer.build(dof_handler);
   const unsigned int      n_levels = tria.n_global_levels();
   MGLevelObject<Operator> level_operators(0, n_levels - 1);
   MGLevelObject<VectorType> level_iterate(0, n_levels - 1);
@@ -150,6 +148,14 @@ int main(int argc, char **argv)
       level_operators[level].reinit(mapping, dof_handler, level_constraints, level);
       level_operators[level].initialize_dof_vector(level_iterate[level]);
     }
+  // The transfer's level vectors with the level operators' layouts (ghosts included).
+  MGTransferMatrixFree<dim, double> transfer(mg_constrained_dofs);
+  {
+    std::vector<std::shared_ptr<const Utilities::MPI::Partitioner>> partitioners(n_levels);
+    for (unsigned int level = 0; level < n_levels; ++level)
+      partitioners[level] = level_operators[level].get_matrix_free().get_vector_partitioner();
+    transfer.build(dof_handler, partitioners);
+  }
   transfer.interpolate_to_mg(dof_handler, level_iterate, w);
   using Smoother = PreconditionChebyshev<Operator, VectorType>;
   mg::SmootherRelaxation<Smoother, VectorType> smoother;

@@ -213,8 +213,9 @@ namespace fdparticle
     // one cell's evaluation of unit vectors (the same on every axis-aligned cell up to 1/h).
     std::vector<double>         value(n_scalar * nq);
     std::vector<Tensor<1, dim>> reference_gradient(n_scalar * nq);
-    phi.reinit(0);
-    for (unsigned int i = 0; i < n_scalar; ++i)
+    if (matrix_free.n_cell_batches() > 0) // a rank may own no cell of a coarse level
+      phi.reinit(0);
+    for (unsigned int i = 0; i < n_scalar && matrix_free.n_cell_batches() > 0; ++i)
       {
         for (unsigned int k = 0; k < n; ++k)
           phi.begin_dof_values()[k] = (k == i ? 1.0 : 0.0);
