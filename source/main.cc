@@ -1,21 +1,24 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <fdparticle/base/build_info.h>
 #include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
 
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace
 {
   void print_usage(std::ostream &out)
   {
-    out << "Usage: fdparticle [--help] [--print-parameters] FILE.prm\n"
+    out << "Usage: fdparticle [--help] [--version] [--print-parameters] FILE.prm\n"
            "  Simulates incompressible flow with freely moving rigid particles by the\n"
            "  fictitious-domain / distributed-Lagrange-multiplier method.\n"
            "  FILE.prm            the scene (deal.II parameter file); see prm/ for examples\n"
            "  --print-parameters  print every parameter with its default and documentation\n"
+           "  --version           print which build this is (source revision, deal.II)\n"
            "  --help              print this text\n"
            "  Run in parallel with: mpirun -np N fdparticle FILE.prm\n";
   }
@@ -70,6 +73,12 @@ int main(int argc, char **argv)
                 print_usage(std::cout);
               return 0;
             }
+          if (arg == "--version")
+            {
+              if (root)
+                std::cout << build_description() << std::endl;
+              return 0;
+            }
           if (arg == "--print-parameters")
             {
               if (root)
@@ -84,6 +93,12 @@ int main(int argc, char **argv)
       AssertThrow(!file.empty(), ExcMessage("No parameter file given; see fdparticle --help."));
       AssertThrow(std::ifstream(file).good(),
                   ExcMessage("Cannot read parameter file '" + file + "'."));
+      {
+        std::ifstream      in(file);
+        std::ostringstream text;
+        text << in.rdbuf();
+        ParameterTools::check_names(prm, text.str(), file);
+      }
       prm.parse_input(file, "", false, false);
 
       const int dim = prm.get_integer("Dimension");

@@ -2,9 +2,13 @@
 
 #include <fdparticle/base/parameter_tools.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <iomanip>
+#include <limits>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace fdparticle
@@ -149,5 +153,152 @@ namespace fdparticle
                                         const std::string &);
     template Tensor<1, 3> get_tensor<3>(const ParameterHandler &, const std::string &,
                                         const std::string &);
+
+    namespace
+    {
+      /// Edit distance between two names, case-insensitive (insertions, deletions,
+      /// substitutions, and swaps of neighbours).
+      unsigned int distance(const std::string &a, const std::string &b)
+      {
+        const auto lower = [](const char c) { return char(std::tolower(c)); };
+        std::vector<std::vector<unsigned int>> d(a.size() + 1,
+                                                 std::vector<unsigned int>(b.size() + 1));
+        for (std::size_t i = 0; i <= a.size(); ++i)
+          d[i][0] = i;
+        for (std::size_t j = 0; j <= b.size(); ++j)
+          d[0][j] = j;
+        for (std::size_t i = 1; i <= a.size(); ++i)
+          for (std::size_t j = 1; j <= b.size(); ++j)
+            {
+              const unsigned int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+              d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+              if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+                  lower(a[i - 2]) == lower(b[j - 1]))
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            }
+        return d[a.size()][b.size()];
+      }
+
+      /// " Did you mean 'X'?" for the closest of the names, if it is close; else "".
+      std::string suggestion(const std::string &name, const std::set<std::string> &names)
+      {
+        std::string  best;
+        unsigned int best_distance = std::numeric_limits<unsigned int>::max();
+        for (const std::string &candidate : names)
+          if (const unsigned int d = distance(name, candidate); d < best_distance)
+            {
+              best          = candidate;
+              best_distance = d;
+            }
+        return best_distance <= std::max<std::size_t>(2, name.size() / 3) ?
+                 " Did you mean '" + best + "'?" :
+                 "";
+      }
+
+      /// The declared subsections and entries below each subsection path ("" the top,
+      /// "A/B" a nested one), from prm's own listing.
+      struct Declared
+      {
+        std::map<std::string, std::set<std::string>> subsections, entries;
+      };
+
+      Declared declared_names(const ParameterHandler &prm)
+      {
+        std::ostringstream listing;
+        prm.print_parameters(listing, ParameterHandler::OutputStyle(ParameterHandler::PRM | ParameterHandler::Short));
+        Declared                 declared;
+        std::vector<std::string> path;
+        const auto joined = [&]() {
+          std::string p;
+          for (const std::string &s : path)
+            p += (p.empty() ? "" : "/") + s;
+          return p;
+        };
+        std::istringstream in(listing.str());
+        for (std::string line; std::getline(in, line);)
+          {
+            line = trim(line.substr(0, line.find('#')));
+            if (line.rfind("subsection ", 0) == 0)
+              {
+                const std::string name = trim(line.substr(11));
+                declared.subsections[joined()].insert(name);
+                path.push_back(name);
+              }
+            else if (line == "end" && !path.empty())
+              path.pop_back();
+            else if (line.rfind("set ", 0) == 0)
+              declared.entries[joined()].insert(trim(line.substr(4, line.find('=') - 4)));
+          }
+        return declared;
+      }
+
+      /// Runs of white space as one blank, as ParameterHandler reads names.
+      std::string normalized(const std::string &name)
+      {
+        std::istringstream in(name);
+        std::string        word, result;
+        while (in >> word)
+          result += (result.empty() ? "" : " ") + word;
+        return result;
+      }
+    } // namespace
+
+    void check_names(const ParameterHandler &prm, const std::string &text,
+                     const std::string &file_name)
+    {
+      const Declared           declared = declared_names(prm);
+      std::vector<std::string> path;
+      std::string              joined;
+      std::istringstream       in(text);
+      unsigned int             number = 0;
+      std::string              pending;
+      for (std::string line; std::getline(in, line);)
+        {
+          ++number;
+          line = line.substr(0, line.find('#'));
+          // A line ending in a backslash continues on the next one.
+          if (!line.empty() && trim(line).size() > 0 && trim(line).back() == '\\')
+            {
+              pending += trim(line).substr(0, trim(line).size() - 1) + " ";
+              continue;
+            }
+          line = trim(pending + line);
+          pending.clear();
+          const std::string where = "Line " + std::to_string(number) + " of '" + file_name + "': ";
+          const std::string in_what =
+            joined.empty() ? "at the top level" : "in subsection '" + joined + "'";
+          if (line.rfind("subsection ", 0) == 0)
+            {
+              const std::string name = normalized(line.substr(11));
+              const auto       &known = declared.subsections.count(joined) ?
+                                    declared.subsections.at(joined) :
+                                    std::set<std::string>();
+              AssertThrow(known.count(name) > 0,
+                          ExcMessage(where + "there is no subsection '" + name + "' " + in_what +
+                                     "." + suggestion(name, known)));
+              path.push_back(name);
+              joined += (joined.empty() ? "" : "/") + name;
+            }
+          else if (line == "end")
+            {
+              AssertThrow(!path.empty(),
+                          ExcMessage(where + "'end' without a subsection to end."));
+              path.pop_back();
+              joined.clear();
+              for (const std::string &s : path)
+                joined += (joined.empty() ? "" : "/") + s;
+            }
+          else if (line.rfind("set ", 0) == 0 && line.find('=') != std::string::npos)
+            {
+              const std::string name = normalized(line.substr(4, line.find('=') - 4));
+              const auto       &known = declared.entries.count(joined) ?
+                                    declared.entries.at(joined) :
+                                    std::set<std::string>();
+              AssertThrow(known.count(name) > 0,
+                          ExcMessage(where + "there is no entry '" + name + "' " + in_what +
+                                     "." + suggestion(name, known)));
+            }
+        }
+    }
   } // namespace ParameterTools
 } // namespace fdparticle

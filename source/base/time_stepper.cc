@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <istream>
 #include <ostream>
+#include <sstream>
 
 namespace fdparticle
 {
@@ -15,7 +16,9 @@ namespace fdparticle
     {
       prm.declare_entry("End time", "1", Patterns::Anything(), "Final time of the run (>= 0; 0: set up and write the initial state "
                         "only).");
-      prm.declare_entry("Time step", "0.1", Patterns::Anything(), "Time step Delta t > 0.");
+      prm.declare_entry("Time step", "0.1", Patterns::Anything(),
+                        "Time step Delta t > 0. If End time is not a multiple of it, the last "
+                        "two steps share the remainder (the run says so at its start).");
       prm.declare_entry("Scheme", "BDF2", Patterns::Anything(),
                         "BDF1 (implicit Euler) or BDF2 (second order; its first step is BDF1).");
       prm.declare_entry("Max time step reductions", "6", Patterns::Anything(),
@@ -76,6 +79,22 @@ namespace fdparticle
     if (remaining < 2 * dt_current * (1 - 1e-9))
       return 0.5 * remaining;
     return dt_current;
+  }
+
+  std::string TimeStepper::describe() const
+  {
+    const double steps = std::floor(t_end / dt_requested * (1 + 1e-12));
+    const double rest  = t_end - steps * dt_requested;
+    if (rest <= 1e-9 * dt_requested || t_end == 0)
+      return "";
+    std::ostringstream out;
+    out << "Time: End time " << t_end << " is not a multiple of the time step " << dt_requested
+        << ": ";
+    if (steps == 0)
+      out << "the run is one step of " << rest << ".";
+    else
+      out << "the last two steps are " << 0.5 * (dt_requested + rest) << " each.";
+    return out.str();
   }
 
   bool TimeStepper::finished() const

@@ -180,7 +180,7 @@ namespace fdparticle
         if (R < h)
           {
             std::ostringstream w;
-            w << "Warning: particle " << k + 1 << " (radius " << R
+            w << "Warning: particle " << k << " (radius " << R
               << ") is smaller than the cells around it (h = " << h << ", d/h = "
               << std::setprecision(3) << 2 * R / h
               << "): it is under-resolved; refine with Geometry/Global refinements or "
@@ -209,7 +209,7 @@ namespace fdparticle
     for (unsigned int k = 0; k < particles.size(); ++k)
       AssertThrow(particles[k].shape->inscribed_radius() >=
                     ParticleSet<dim>::min_radius_in_cells * h,
-                  ExcMessage("Particle " + std::to_string(k + 1) + " (radius " +
+                  ExcMessage("Particle " + std::to_string(k) + " (radius " +
                              ParameterTools::format_short(particles[k].shape->inscribed_radius()) +
                              ") is smaller than " +
                              ParameterTools::format_short(ParticleSet<dim>::min_radius_in_cells) +

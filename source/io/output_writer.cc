@@ -3,12 +3,16 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <fdparticle/base/build_info.h>
 #include <fdparticle/io/output_writer.h>
 #include <fdparticle/particles/sphere.h>
 #include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/fem/introspection.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <regex>
 #include <iomanip>
 #include <istream>
 #include <ostream>
@@ -164,6 +168,8 @@ namespace fdparticle
       return;
 
     std::ofstream prm_out(output_directory + "/parameters.prm");
+    prm_out << "# Written by " << build_description() << " on "
+            << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n";
     prm.print_parameters(prm_out, ParameterHandler::PRM);
 
     const std::string particles_file = output_directory + "/particles.csv";
@@ -176,6 +182,18 @@ namespace fdparticle
         statistics_csv.open(statistics_file, std::ios::app);
         return;
       }
+    // A new run: the field files and the smoothness table of an earlier run into the same
+    // directory would stand beside the new ones (or after them, if that run was longer).
+    const std::regex earlier(
+      R"((solution|particles)-[0-9]+(\.[0-9]+)?\.(vtu|pvtu)|(solution|particles)\.pvd|smoothness\.csv)");
+    unsigned int removed = 0;
+    for (const auto &entry : std::filesystem::directory_iterator(output_directory))
+      if (entry.is_regular_file() &&
+          std::regex_match(entry.path().filename().string(), earlier))
+        removed += std::filesystem::remove(entry.path());
+    if (removed > 0)
+      std::cout << "fdparticle: removed " << removed << " field and table files of an earlier "
+                << "run from '" << output_directory << "'" << std::endl;
     particles_csv.open(particles_file);
     Particle<dim> any;
     any.shape = std::make_shared<const Sphere<dim>>(1.0);

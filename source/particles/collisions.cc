@@ -101,7 +101,7 @@ namespace fdparticle
         AssertThrow(weight[i] > 0 || particles.size() == 1 ||
                       particles[i].first_unknown == numbers::invalid_unsigned_int,
                     ExcMessage("Collisions/Stiffness = auto scales with the apparent weight of "
-                               "the particles, and particle " + std::to_string(i + 1) +
+                               "the particles, and particle " + std::to_string(i) +
                                " has none (no gravity, or the fluid's density): give the "
                                "force at contact as a number."));
   }

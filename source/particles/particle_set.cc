@@ -220,7 +220,7 @@ namespace fdparticle
       for (unsigned int d = 0; d < dim; ++d)
         {
           const double      lower = domain.lower_corner()[d], upper = domain.upper_corner()[d];
-          const std::string what = "Particle " + std::to_string(p.id + 1) + " (centre " +
+          const std::string what = "Particle " + std::to_string(p.id) + " (centre " +
                                    std::string(1, "xyz"[d]) + " = " +
                                    std::to_string(p.position[d]) +
                                    ", radius " + std::to_string(p.bounding_radius()) + ")";
@@ -250,8 +250,8 @@ namespace fdparticle
       }
     const auto overlaps = PairSearch<dim>(domain).pairs(x, r, 0.0);
     AssertThrow(overlaps.empty(),
-                ExcMessage("Particles " + std::to_string(overlaps[0].i + 1) + " and " +
-                           std::to_string(overlaps[0].j + 1) + " overlap" + when +
+                ExcMessage("Particles " + std::to_string(overlaps[0].i) + " and " +
+                           std::to_string(overlaps[0].j) + " overlap" + when +
                            (time == 0.0 ? "." : " (see subsection Collisions).")));
   }
 

@@ -98,7 +98,7 @@ namespace fdparticle
       for (unsigned int k = 0; k < particles.size(); ++k)
         AssertThrow(stiffness[k] > 0 || particles[k].first_unknown == numbers::invalid_unsigned_int,
                     ExcMessage("Wall repulsion/Model = spring-dashpot needs a spring, and "
-                               "particle " + std::to_string(k + 1) + " has none: its Stiffness "
+                               "particle " + std::to_string(k) + " has none: its Stiffness "
                                "is 0, or 'auto' with no apparent weight (no gravity, or the "
                                "fluid's density). Give the force at contact or the Spring "
                                "stiffness as a number."));

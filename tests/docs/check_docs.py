@@ -4,6 +4,10 @@
 Fails when
 - doc/parameters.md differs from what scripts/parameter-reference.py writes from the
   program's declarations (regenerate it with the command the failure prints);
+- a new run into an output directory leaves the field files of an earlier run there, or
+  removes a file the program does not write;
+- `fdparticle --version` does not name the revision, deal.II's version and the build type,
+  or parameters.prm does not start with it;
 - a CSV file the program writes has no section in doc/output.md (a heading naming the
   file) that gives its exact header line and names each of its columns;
 - tests/README.md does not give the number of tests ctest has, or does not name one of
@@ -98,11 +102,29 @@ def check_csv_columns(source, executable, work):
     os.makedirs(work)
     with open(os.path.join(work, "scene.prm"), "w") as f:
         f.write(SCENE)
+    # Files of an earlier, longer run into the same directory, and one of the user's.
+    os.makedirs(os.path.join(work, "output"))
+    stale = ["solution-00099.pvtu", "solution-00099.0000.vtu", "particles-00099.vtu"]
+    for name in stale + ["notes.txt"]:
+        open(os.path.join(work, "output", name), "w").close()
     subprocess.run([executable, "scene.prm"], cwd=work, check=True, stdout=subprocess.DEVNULL)
+    left = [name for name in stale if os.path.exists(os.path.join(work, "output", name))]
+    check(not left and os.path.exists(os.path.join(work, "output", "notes.txt")),
+          "a new run removes the field files of an earlier one and nothing else%s"
+          % (" (left: %s)" % ", ".join(left) if left else ""))
     path = os.path.join(source, OUTPUT_PAGE)
     page = open(path).read() if os.path.exists(path) else ""
     check(page != "", "%s exists" % OUTPUT_PAGE)
     out_dir = os.path.join(work, "output")
+    # The run names its build, as --version does (doc/output.md, parameters.prm).
+    version = subprocess.run([executable, "--version"], check=True, capture_output=True,
+                             text=True).stdout.strip()
+    check(re.fullmatch(r"fdparticle \S+ \(deal\.II [0-9.]+, (Release|Debug)\)", version) is not None,
+          "--version names the revision, deal.II and the build type: %s" % version)
+    with open(os.path.join(out_dir, "parameters.prm")) as f:
+        first = f.readline().strip()
+    check(first == "# Written by %s on 1 MPI rank(s)" % version,
+          "parameters.prm names the build that wrote it: %s" % first)
     csv_files = sorted(f for f in os.listdir(out_dir) if f.endswith(".csv"))
     check(len(csv_files) >= 3, "the scene wrote its CSV files (%s)" % ", ".join(csv_files))
     for name in csv_files:

@@ -308,9 +308,9 @@ end
     check_rejected<2>(P, "0, 3.75 : 0.25 : 1", "overlaps a wall"); // touching counts
     check_rejected<3>(P, "0.5, 0.15, 1.5 : 0.2 : 1", "overlaps a wall");
     check_rejected<3>(P, "0.5, 1, 1.5 : 0.5 : 1", "would overlap its own periodic image");
-    check_rejected<2>(P, "0, 1 : 0.3 : 1 ; 0.4, 1.2 : 0.3 : 1", "Particles 1 and 2 overlap");
+    check_rejected<2>(P, "0, 1 : 0.3 : 1 ; 0.4, 1.2 : 0.3 : 1", "Particles 0 and 1 overlap");
     check_rejected<3>(P, "0.5,1,1.5:0.2:2; 0.5,0.5,0.5:0.1:3; 0.5,1.3,1.5:0.15:1",
-                      "Particles 1 and 3 overlap");
+                      "Particles 0 and 2 overlap");
     check_rejected<2>(P, "0, 1 : 0 : 1", "radius must be positive");
     check_rejected<2>(P, "0, 1 : -0.2 : 1", "radius must be positive");
     check_rejected<2>(P, "0, 1 : 0.2 : 0", "density must be positive");
@@ -354,6 +354,46 @@ end
         std::cout << "          (" << message << ")" << std::endl;
       }
   }
+
+  /// A misspelled name is refused before ParameterHandler reads the file, with its line,
+  /// its subsection and the declared name closest to it.
+  void test_misspelled_names()
+  {
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    const auto message = [&](const std::string &text) -> std::string {
+      try
+        {
+          ParameterTools::check_names(prm, text, "scene.prm");
+        }
+      catch (const std::exception &exc)
+        {
+          return ParameterTools::one_line_message(exc);
+        }
+      return "";
+    };
+    check(message("set Dimension = 2\nsubsection Geometry\n  set Lower  corner = 0, 0\nend\n")
+            .empty(),
+          "declared names pass (blanks inside a name count as one)");
+    const std::string entry =
+      message("set Dimension = 2\nsubsection Geometry\n  set Lower corenr = 0, 0\nend\n");
+    check(entry.find("Line 3 of 'scene.prm'") != std::string::npos &&
+            entry.find("no entry 'Lower corenr' in subsection 'Geometry'") != std::string::npos &&
+            entry.find("Did you mean 'Lower corner'?") != std::string::npos,
+          "a misspelled entry: its line, its subsection and the closest name", entry);
+    const std::string section = message("subsection Geomtry\n  set Lower corner = 0, 0\nend\n");
+    check(section.find("Line 1 of 'scene.prm'") != std::string::npos &&
+            section.find("no subsection 'Geomtry' at the top level") != std::string::npos &&
+            section.find("Did you mean 'Geometry'?") != std::string::npos,
+          "a misspelled subsection: its line and the closest name", section);
+    const std::string nested =
+      message("subsection Particles\n  subsection Random particles\n    set Cuont = 3\n  end\nend\n");
+    check(nested.find("in subsection 'Particles/Random particles'") != std::string::npos &&
+            nested.find("Did you mean 'Count'?") != std::string::npos,
+          "a nested subsection is named by its path", nested);
+    check(message("set Completely different name = 1\n").find("Did you mean") == std::string::npos,
+          "no suggestion when nothing is close");
+  }
 } // namespace
 
 int main()
@@ -363,6 +403,7 @@ int main()
       test_good_2d();
       test_good_3d();
       test_bad_input();
+      test_misspelled_names();
     }
   catch (const std::exception &exc)
     {

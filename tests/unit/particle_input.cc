@@ -109,7 +109,7 @@ namespace
       {ok + "0.7, 0.4" + three + ", 0.1, 2, prescribed\n", "line 2)': 'prescribed' needs"},
       {ok + "0.7, 0.4" + three + ", -0.1, 2\n", "line 2)': the radius must be positive"},
       {"# nothing\n", "lists no particle"},
-      {ok + "0.35, 0.4" + three + ", 0.1, 2\n", "Particles 1 and 2 overlap"}};
+      {ok + "0.35, 0.4" + three + ", 0.1, 2\n", "Particles 0 and 1 overlap"}};
     for (const auto &[text, expected] : bad)
       {
         write(text);

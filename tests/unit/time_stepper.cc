@@ -196,6 +196,17 @@ int main()
       // Step larger than the whole interval: one shortened BDF1 step.
       test_variable_step("BDF2", 0.5, 0.2, {0.2});
 
+      // The line a run prints when the end time is not a multiple of the step: the sizes
+      // the steps above take.
+      unit_check::check(make_stepper("BDF2", "0.3", "1").describe().find("are 0.2 each") !=
+                          std::string::npos,
+                        "describe(): dt = 0.3 to 1, the last two steps are 0.2 each");
+      unit_check::check(make_stepper("BDF2", "0.1", "1").describe().empty(),
+                        "describe(): nothing to say when 0.1 fits 10 times into 1");
+      unit_check::check(make_stepper("BDF2", "0.5", "0.2").describe().find("one step of 0.2") !=
+                          std::string::npos,
+                        "describe(): a step longer than the run is one step of 0.2");
+
       std::cout << "Recovery: halving down to dt / 2^N, doubling back" << std::endl;
       {
         ParameterHandler prm;

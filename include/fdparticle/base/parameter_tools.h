@@ -71,6 +71,15 @@ namespace fdparticle
     /// A number for a message, to 3 significant digits ("2e+11", "0.05").
     std::string format_short(const double x);
 
+    /**
+     * Check that every subsection and entry the text of a parameter file names is declared
+     * in prm, before ParameterHandler reads it: a name it does not know is refused with the
+     * line, the subsection it was looked for in, and the declared name closest to it
+     * ("did you mean ..."). file_name is for the message.
+     */
+    void check_names(const ParameterHandler &prm, const std::string &text,
+                     const std::string &file_name);
+
     /// The first line of the message of a deal.II or standard exception, made into one line.
     std::string one_line_message(const std::exception &exc);
   } // namespace ParameterTools

@@ -45,6 +45,9 @@ namespace fdparticle
     double       next_step() const;
     /// Whether the end time is reached.
     bool         finished() const;
+    /// A line for the start of a run when End time is not a multiple of Time step (the
+    /// size of the last two steps), else "".
+    std::string  describe() const;
 
     /// c0, c1, c2 with dy/dt ≈ c0 y^{n+1} + c1 y^n + c2 y^{n−1}, for the next step.
     std::array<double, 3> coefficients() const;

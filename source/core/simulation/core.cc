@@ -152,6 +152,8 @@ namespace fdparticle
       pcout << line << std::endl;
     for (const std::string &line : interactions.describe(time.next_step()))
       pcout << line << std::endl;
+    if (const std::string line = time.describe(); !line.empty())
+      pcout << line << std::endl;
 
     ProgressLine progress(time.end_time(), linear_solver->iterative());
     while (!time.finished())

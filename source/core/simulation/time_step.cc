@@ -202,7 +202,7 @@ namespace fdparticle
             if (!bigger(v, largest))
               continue;
             largest = std::isfinite(v) ? v : std::numeric_limits<double>::max();
-            where = "particle " + std::to_string(k + 1) + "'s " +
+            where = "particle " + std::to_string(k) + "'s " +
                     (j < dim ? std::string("force balance (") + "xyz"[j] + ")" :
                                std::string(particles.closure() == AngularVelocityClosure::kinematic ?
                                              "angular-velocity closure (" :
@@ -216,7 +216,7 @@ namespace fdparticle
       << " in " << where;
     for (unsigned int k = 0; k < particles.size(); ++k)
       if (particles[k].first_unknown != numbers::invalid_unsigned_int)
-        s << "; particle " << k + 1 << " V = (" << particles[k].velocity << ")";
+        s << "; particle " << k << " V = (" << particles[k].velocity << ")";
     return s.str();
   }
 
