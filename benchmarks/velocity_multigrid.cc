@@ -39,6 +39,8 @@
 
 #include <fdparticle/fem/velocity_operator.h>
 
+#include "velocity_matrix.h"
+
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -189,60 +191,10 @@ int main(int argc, char **argv)
 
   // ML on the assembled matrix, as the block preconditioner sets it up.
   start = now(comm);
-  TrilinosWrappers::SparsityPattern sparsity(owned, owned, relevant, comm);
-  DoFTools::make_sparsity_pattern(dof_handler, sparsity, constraints, false,
-                                  Utilities::MPI::this_mpi_process(comm));
-  sparsity.compress();
   TrilinosWrappers::SparseMatrix matrix;
-  matrix.reinit(sparsity);
   w.update_ghost_values();
-  {
-    const QGauss<dim>  quadrature(Operator::n_points_1d);
-    FEValues<dim>      fv(mapping, fe, quadrature, update_values | update_gradients | update_JxW_values);
-    const unsigned int nd = fe.n_dofs_per_cell(), nq = quadrature.size();
-    FullMatrix<double> local(nd, nd);
-    std::vector<types::global_dof_index> dofs(nd);
-    std::vector<Tensor<1, dim>>          w_q(nq);
-    std::vector<Tensor<2, dim>>          grad_w_q(nq);
-    const FEValuesExtractors::Vector     u(0);
-    std::vector<unsigned int>            component(nd);
-    for (unsigned int i = 0; i < nd; ++i)
-      component[i] = fe.system_to_component_index(i).first;
-    std::vector<double>         N(nd), w_grad_N(nd);
-    std::vector<Tensor<1, dim>> dN(nd);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fv.reinit(cell);
-          fv[u].get_function_values(w, w_q);
-          fv[u].get_function_gradients(w, grad_w_q);
-          local = 0;
-          for (unsigned int q = 0; q < nq; ++q)
-            {
-              const double JxW = fv.JxW(q);
-              for (unsigned int i = 0; i < nd; ++i)
-                {
-                  N[i]        = fv.shape_value_component(i, q, component[i]);
-                  dN[i]       = fv.shape_grad_component(i, q, component[i]);
-                  w_grad_N[i] = w_q[q] * dN[i];
-                }
-              for (unsigned int i = 0; i < nd; ++i)
-                for (unsigned int j = 0; j < nd; ++j)
-                  {
-                    const unsigned int ci = component[i], cj = component[j];
-                    double value = density * N[i] * grad_w_q[q][ci][cj] * N[j] +
-                                   viscosity * dN[i][cj] * dN[j][ci];
-                    if (ci == cj)
-                      value += density * c0 * N[i] * N[j] + density * N[i] * w_grad_N[j] +
-                               viscosity * (dN[i] * dN[j]);
-                    local(i, j) += value * JxW;
-                  }
-            }
-          cell->get_dof_indices(dofs);
-          constraints.distribute_local_to_global(local, dofs, matrix);
-        }
-    matrix.compress(VectorOperation::add);
-  }
+  assemble_velocity_matrix(mapping, dof_handler, constraints, w, density, viscosity, c0,
+                           Operator::n_points_1d, matrix);
   const double assembly = now(comm) - start;
   start                 = now(comm);
   TrilinosWrappers::PreconditionAMG::AdditionalData amg;

@@ -90,6 +90,11 @@ namespace fdparticle
                     ExcMessage("Parameter '" + name + "': '" + line + "' has " +
                                std::to_string(columns.size()) + " columns; a line is '" +
                                form + "'."));
+        // Where the motion goes (a word) a number: the file has a z column in a 2D scene.
+        AssertThrow(dim == 3 || columns.size() <= dim + 2 || !starts_with_number(columns[dim + 2]),
+                    ExcMessage("Parameter '" + name + "': '" + line + "' has a number where the "
+                               "motion (free, fixed, prescribed) goes: is it a 3D particle file? "
+                               "This scene is 2D; a line is '" + form + "'."));
         Entry entry{name, {join(columns, 0, dim), columns[dim], columns[dim + 1]}};
         if (columns.size() > dim + 2)
           entry.fields.push_back(columns[dim + 2]);

@@ -110,6 +110,16 @@ namespace
       {ok + "0.7, 0.4" + three + ", -0.1, 2\n", "line 2)': the radius must be positive"},
       {"# nothing\n", "lists no particle"},
       {ok + "0.35, 0.4" + three + ", 0.1, 2\n", "Particles 0 and 1 overlap"}};
+    // A 3D file in a 2D scene: its z column shifts the radius, density into motion's place.
+    if (dim == 2)
+      {
+        write(ok + "0.7, 0.4, 0.5, 0.1, 2\n");
+        ParticleSet<dim>  s;
+        const std::string e = parse<dim>("", "set Particle file = " + csv_name, s, domain);
+        check(contains(e, "line 2)': '0.7, 0.4, 0.5, 0.1, 2' has a number where the motion") &&
+                contains(e, "3D particle file"),
+              "a 3D line in a 2D scene is named as one", e.substr(0, 300));
+      }
     for (const auto &[text, expected] : bad)
       {
         write(text);
