@@ -195,6 +195,15 @@ namespace fdparticle
                  "";
       }
 
+      /// A subsection path as "A/B" ("" the top level).
+      std::string joined(const std::vector<std::string> &path)
+      {
+        std::string p;
+        for (const std::string &s : path)
+          p += (p.empty() ? "" : "/") + s;
+        return p;
+      }
+
       /// The declared subsections and entries below each subsection path ("" the top,
       /// "A/B" a nested one), from prm's own listing.
       struct Declared
@@ -202,32 +211,35 @@ namespace fdparticle
         std::map<std::string, std::set<std::string>> subsections, entries;
       };
 
+      /// The names of a map of Declared at a path (none if the path has none).
+      const std::set<std::string> &names_at(const std::map<std::string, std::set<std::string>> &names,
+                                           const std::string &                                  path)
+      {
+        static const std::set<std::string> none;
+        const auto                         it = names.find(path);
+        return it == names.end() ? none : it->second;
+      }
+
       Declared declared_names(const ParameterHandler &prm)
       {
         std::ostringstream listing;
         prm.print_parameters(listing, ParameterHandler::OutputStyle(ParameterHandler::PRM | ParameterHandler::Short));
         Declared                 declared;
         std::vector<std::string> path;
-        const auto joined = [&]() {
-          std::string p;
-          for (const std::string &s : path)
-            p += (p.empty() ? "" : "/") + s;
-          return p;
-        };
-        std::istringstream in(listing.str());
+        std::istringstream       in(listing.str());
         for (std::string line; std::getline(in, line);)
           {
             line = trim(line.substr(0, line.find('#')));
             if (line.rfind("subsection ", 0) == 0)
               {
                 const std::string name = trim(line.substr(11));
-                declared.subsections[joined()].insert(name);
+                declared.subsections[joined(path)].insert(name);
                 path.push_back(name);
               }
             else if (line == "end" && !path.empty())
               path.pop_back();
             else if (line.rfind("set ", 0) == 0)
-              declared.entries[joined()].insert(trim(line.substr(4, line.find('=') - 4)));
+              declared.entries[joined(path)].insert(trim(line.substr(4, line.find('=') - 4)));
           }
         return declared;
       }
@@ -248,52 +260,44 @@ namespace fdparticle
     {
       const Declared           declared = declared_names(prm);
       std::vector<std::string> path;
-      std::string              joined;
       std::istringstream       in(text);
       unsigned int             number = 0;
       std::string              pending;
       for (std::string line; std::getline(in, line);)
         {
           ++number;
-          line = line.substr(0, line.find('#'));
+          line = trim(line.substr(0, line.find('#')));
           // A line ending in a backslash continues on the next one.
-          if (!line.empty() && trim(line).size() > 0 && trim(line).back() == '\\')
+          if (!line.empty() && line.back() == '\\')
             {
-              pending += trim(line).substr(0, trim(line).size() - 1) + " ";
+              pending += line.substr(0, line.size() - 1) + " ";
               continue;
             }
           line = trim(pending + line);
           pending.clear();
+          const std::string here = joined(path);
           const std::string where = "Line " + std::to_string(number) + " of '" + file_name + "': ";
           const std::string in_what =
-            joined.empty() ? "at the top level" : "in subsection '" + joined + "'";
+            here.empty() ? "at the top level" : "in subsection '" + here + "'";
           if (line.rfind("subsection ", 0) == 0)
             {
               const std::string name = normalized(line.substr(11));
-              const auto       &known = declared.subsections.count(joined) ?
-                                    declared.subsections.at(joined) :
-                                    std::set<std::string>();
+              const auto       &known = names_at(declared.subsections, here);
               AssertThrow(known.count(name) > 0,
                           ExcMessage(where + "there is no subsection '" + name + "' " + in_what +
                                      "." + suggestion(name, known)));
               path.push_back(name);
-              joined += (joined.empty() ? "" : "/") + name;
             }
           else if (line == "end")
             {
               AssertThrow(!path.empty(),
                           ExcMessage(where + "'end' without a subsection to end."));
               path.pop_back();
-              joined.clear();
-              for (const std::string &s : path)
-                joined += (joined.empty() ? "" : "/") + s;
             }
           else if (line.rfind("set ", 0) == 0 && line.find('=') != std::string::npos)
             {
               const std::string name = normalized(line.substr(4, line.find('=') - 4));
-              const auto       &known = declared.entries.count(joined) ?
-                                    declared.entries.at(joined) :
-                                    std::set<std::string>();
+              const auto       &known = names_at(declared.entries, here);
               AssertThrow(known.count(name) > 0,
                           ExcMessage(where + "there is no entry '" + name + "' " + in_what +
                                      "." + suggestion(name, known)));

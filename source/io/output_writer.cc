@@ -105,18 +105,33 @@ namespace fdparticle
               {"contact_force", vector(P.contact_force)}};
     }
 
+    /// One CSV line: the items, comma-separated.
+    template <typename Items>
+    void write_line(std::ostream &out, const Items &items)
+    {
+      bool first = true;
+      for (const auto &item : items)
+        {
+          out << (first ? "" : ",") << item;
+          first = false;
+        }
+      out << '\n';
+    }
+
     void write_header(std::ostream &out, const Columns &columns)
     {
-      for (unsigned int i = 0; i < columns.size(); ++i)
-        out << (i > 0 ? "," : "") << columns[i].first;
-      out << '\n';
+      std::vector<std::string> names;
+      for (const auto &column : columns)
+        names.push_back(column.first);
+      write_line(out, names);
     }
 
     void write_row(std::ostream &out, const Columns &columns)
     {
-      for (unsigned int i = 0; i < columns.size(); ++i)
-        out << (i > 0 ? "," : "") << columns[i].second;
-      out << '\n';
+      std::vector<double> values;
+      for (const auto &column : columns)
+        values.push_back(column.second);
+      write_line(out, values);
     }
 
     /// Keep the header and the rows whose first field is at most 'last'; used on restart.
@@ -199,9 +214,7 @@ namespace fdparticle
     any.shape = std::make_shared<const Sphere<dim>>(1.0);
     write_header(particles_csv, particle_columns(0, any));
     statistics_csv.open(statistics_file);
-    for (unsigned int i = 0; i < statistics.names().size(); ++i)
-      statistics_csv << (i > 0 ? "," : "") << statistics.names()[i];
-    statistics_csv << '\n';
+    write_line(statistics_csv, statistics.names());
   }
 
   template <int dim>
@@ -246,9 +259,7 @@ namespace fdparticle
     if (!root)
       return;
     statistics_csv << std::setprecision(10);
-    for (unsigned int i = 0; i < statistics.values().size(); ++i)
-      statistics_csv << (i > 0 ? "," : "") << statistics.values()[i];
-    statistics_csv << '\n';
+    write_line(statistics_csv, statistics.values());
     statistics_csv.flush();
   }
 
