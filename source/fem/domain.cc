@@ -79,6 +79,25 @@ namespace fdparticle
   }
 
   template <int dim>
+  void Domain<dim>::create_coarsened_copy(const parallel::distributed::Triangulation<dim> &fine,
+                                          parallel::distributed::Triangulation<dim> &coarse) const
+  {
+    coarse.copy_triangulation(fine);
+    // The copy keeps p4est's periodic connectivity but not deal.II's map of periodic
+    // faces, which the hanging-node and periodicity constraints read; p4est's
+    // add_periodicity() needs an unrefined mesh, the base class's does not.
+    std::vector<GridTools::PeriodicFacePair<
+      typename parallel::distributed::Triangulation<dim>::cell_iterator>>
+      pairs;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (this->periodic[d])
+        GridTools::collect_periodic_faces(coarse, 2 * d, 2 * d + 1, d, pairs);
+    if (!pairs.empty())
+      coarse.Triangulation<dim>::add_periodicity(pairs);
+    coarse.coarsen_global();
+  }
+
+  template <int dim>
   void Domain<dim>::make_periodicity_constraints(const DoFHandler<dim> &    dof_handler,
                                                  AffineConstraints<double> &constraints) const
   {

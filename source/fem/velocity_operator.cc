@@ -1,5 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/matrix_free/fe_evaluation.h>
 
 #include <fdparticle/fem/q2_cell_kernel.h>
@@ -270,6 +272,83 @@ namespace fdparticle
     for (const unsigned int i : matrix_free.get_constrained_dofs())
       diagonal.local_element(i) = 1;
     diagonal_entries = diagonal;
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::compute_matrix(const AffineConstraints<double> &constraints,
+                                             TrilinosWrappers::SparseMatrix & matrix) const
+  {
+    const DoFHandler<dim> &dof_handler = matrix_free.get_dof_handler();
+    const unsigned int     level       = matrix_free.get_mg_level();
+    AssertThrow(level == numbers::invalid_unsigned_int,
+                ExcMessage("VelocityOperator::compute_matrix works on the active cells."));
+    const MPI_Comm comm = dof_handler.get_communicator();
+    IndexSet       relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    TrilinosWrappers::SparsityPattern sparsity(dof_handler.locally_owned_dofs(),
+                                               dof_handler.locally_owned_dofs(), relevant, comm);
+    DoFTools::make_sparsity_pattern(dof_handler, sparsity, constraints, false,
+                                    Utilities::MPI::this_mpi_process(comm));
+    sparsity.compress();
+    matrix.reinit(sparsity);
+
+    // Column j of a cell's matrix is the kernel applied to the unit vector e_j: the cell
+    // fills all lanes, one unit vector in each.
+    using Kernel             = Q2CellKernel<dim>;
+    constexpr unsigned int L = Kernel::lanes;
+    const unsigned int     n = dof_handler.get_fe().n_dofs_per_cell();
+    const unsigned int     nq = Kernel::n_points;
+    const auto &lexicographic = matrix_free.get_shape_info().lexicographic_numbering;
+    std::vector<double> in(n * L), out(n * L), lengths(dim * L), volumes(L),
+      w(convection ? nq * dim * L : 0), grad_w(convection ? nq * dim * dim * L : 0);
+    FullMatrix<double>                   local(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
+      {
+        const auto cell_iterator = matrix_free.get_cell_iterator(cell, 0);
+        if (batch_is_cut[cell])
+          {
+            const FullMatrix<double> &m = cut_matrices[cell_iterator->active_cell_index()];
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                local(lexicographic[i], lexicographic[j]) =
+                  m(matrix_row_of_evaluation_index[i], matrix_row_of_evaluation_index[j]);
+          }
+        else
+          {
+            for (unsigned int l = 0; l < L; ++l)
+              {
+                for (unsigned int d = 0; d < dim; ++d)
+                  lengths[d * L + l] = cell_inverse_lengths[cell * dim + d];
+                volumes[l] = cell_volumes[cell];
+                if (convection)
+                  for (unsigned int q = 0; q < nq; ++q)
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        w[(q * dim + c) * L + l] = iterate_values[cell * nq + q][c][0];
+                        for (unsigned int e = 0; e < dim; ++e)
+                          grad_w[((q * dim + c) * dim + e) * L + l] =
+                            iterate_gradients[cell * nq + q][c][e][0];
+                      }
+              }
+            for (unsigned int first = 0; first < n; first += L)
+              {
+                std::fill(in.begin(), in.end(), 0.0);
+                for (unsigned int l = 0; l < L && first + l < n; ++l)
+                  in[(first + l) * L + l] = 1;
+                Kernel::apply(in.data(), out.data(), lengths.data(), volumes.data(),
+                              convection ? w.data() : nullptr,
+                              convection ? grad_w.data() : nullptr, density * c0, density,
+                              viscosity);
+                for (unsigned int l = 0; l < L && first + l < n; ++l)
+                  for (unsigned int i = 0; i < n; ++i)
+                    local(lexicographic[i], lexicographic[first + l]) = out[i * L + l];
+              }
+          }
+        cell_iterator->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, matrix);
+      }
+    matrix.compress(VectorOperation::add);
   }
 
   template <int dim>

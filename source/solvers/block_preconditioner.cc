@@ -56,6 +56,7 @@ namespace fdparticle
     times = ApplicationTimes();
     n_patch      = 0;
     velocity_amg.clear();
+    velocity_inverse.reset();
     multiplier_amg.clear();
     pressure_amg.clear();
     pressure_laplacian.reset();
@@ -188,8 +189,14 @@ namespace fdparticle
                              large_3d_smoother_sweeps :
                              smoother_sweeps);
     amg.aggregation_threshold = velocity_aggregation_threshold;
-    velocity_matrix           = extract(velocity_block, {velocity_block});
-    velocity_amg.initialize(*velocity_matrix, amg);
+    velocity_inverse = system->blocks.velocity_inverse;
+    if (velocity_inverse)
+      velocity_inverse->initialize(*system);
+    else
+      {
+        velocity_matrix = extract(velocity_block, {velocity_block});
+        velocity_amg.initialize(*velocity_matrix, amg);
+      }
     amg.aggregation_threshold = multiplier_aggregation_threshold;
     multiplier_matrix = extract(multiplier_block, {multiplier_block, velocity_block});
     multiplier_amg.initialize(*multiplier_matrix, amg);
@@ -364,7 +371,10 @@ namespace fdparticle
       ui[i] = r[i] - t[i];
     {
       const ScopedSeconds seconds(times.velocity_cycles);
-      velocity_amg.vmult(u_out, u_in);
+      if (velocity_inverse)
+        velocity_inverse->vmult(u_out, u_in);
+      else
+        velocity_amg.vmult(u_out, u_in);
     }
 
     dst.block(0) = 0;

@@ -51,6 +51,12 @@ namespace fdparticle
                         "covers a cell the cell-by-cell pressure approximation fails. 0.25 keeps "
                         "the iterations of the whole shell (1) with fewer patch unknowns "
                         "(doc/scaling.md).");
+      prm.declare_entry("Velocity preconditioner", "amg", Patterns::Selection("amg|multigrid"),
+                        "Iterative solver: the approximate inverse of the velocity block inside "
+                        "the block preconditioner (doc/method.md §8). amg: one ML V-cycle on the "
+                        "assembled velocity matrix. multigrid: one geometric multigrid V-cycle on "
+                        "the matrix-free velocity operator over the mesh coarsened level by "
+                        "level; needs no velocity matrix and little set-up (doc/scaling.md).");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),
                         "Print, for every linear solve, the FGMRES and inner iterations, the "
                         "residual reached, the cut-cell patch's size and memory, and rank 0's "
@@ -78,6 +84,7 @@ namespace fdparticle
     preconditioner.patch_fluid_fraction = prm.get_double("Cut cell patch fluid fraction");
     preconditioner.patch_memory_limit   = prm.get_double("Cut cell patch memory") * 1e9;
     verbose                        = prm.get_bool("Iterative solver statistics");
+    velocity_multigrid             = prm.get("Velocity preconditioner") == "multigrid";
     prm.leave_subsection();
   }
 

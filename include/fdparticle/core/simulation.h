@@ -30,6 +30,9 @@
 
 namespace fdparticle
 {
+  template <int dim>
+  class VelocityMultigrid;
+
   using namespace dealii;
 
   /// Declare every parameter of the program (all dimensions share one declaration).
@@ -129,6 +132,8 @@ namespace fdparticle
     FESystem<dim>                             fe;
     DoFHandler<dim>                           dof_handler;
     NavierStokesAssembler<dim>                assembler;
+    /// The velocity block's multigrid, if the linear solver asks for it.
+    std::shared_ptr<VelocityMultigrid<dim>>   velocity_multigrid;
 
     IndexSet                  owned_dofs, relevant_dofs, velocity_dofs, multiplier_dofs;
     AffineConstraints<double> static_constraints;  ///< hanging nodes + periodicity

@@ -43,6 +43,14 @@ namespace fdparticle
     /// The same without the global refinements: what a checkpoint's mesh is loaded onto.
     void create_coarse_mesh(parallel::distributed::Triangulation<dim> &triangulation) const;
 
+    /**
+     * coarse = fine with every cell replaced by its parent (cells of the base mesh stay),
+     * periodic faces registered as in create_coarse_mesh(): one level of a geometric
+     * multigrid's mesh hierarchy. coarse must be empty.
+     */
+    void create_coarsened_copy(const parallel::distributed::Triangulation<dim> &fine,
+                               parallel::distributed::Triangulation<dim> &      coarse) const;
+
     /// Periodicity constraints on all components given in mask.
     void make_periodicity_constraints(const DoFHandler<dim> &    dof_handler,
                                       AffineConstraints<double> &constraints) const;

@@ -10,6 +10,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/matrix_free/matrix_free.h>
 
 #include <vector>
@@ -75,6 +76,11 @@ namespace fdparticle
     /// cell's diagonal, added through the constraints (exact without hanging nodes, an
     /// approximation on the masters of hanging nodes).
     void compute_diagonal(VectorType &diagonal) const;
+
+    /// The operator as a sparse matrix, cell by cell through the constraints (constrained
+    /// rows get AffineConstraints' diagonal): for a coarse level's algebraic solver.
+    void compute_matrix(const AffineConstraints<double> &constraints,
+                        TrilinosWrappers::SparseMatrix & matrix) const;
 
     /// The number of rows, and a diagonal entry (i == j) after compute_diagonal(): what
     /// deal.II's smoothers ask of a matrix.

@@ -44,7 +44,8 @@ namespace fdparticle
    * (u, λ, y) block keeps it, and so does the cut-cell patch where it reaches (the cheap
    * form relies on it). The inner preconditioner is block triangular too:
    *
-   *     [ K   A_uλ ]      K = A_uu: one AMG V-cycle (ML)
+   *     [ K   A_uλ ]      K = A_uu: one AMG V-cycle (ML), or the program's geometric
+   *                        multigrid (NewtonSystem::Blocks::velocity_inverse)
    *     [ 0   S_λ  ]      S_λ: A_λλ + M, with the particle unknowns y, below
    *
    * Eliminating u leaves S_λλ = A_λλ + M K⁻¹ Mᵀ (M = A_λu, the pairing <η, v>_P). The
@@ -79,7 +80,7 @@ namespace fdparticle
     /// Build from the system's current values. The system and the operator must outlive
     /// the preconditioner's use; A keeps being read (for the current values).
     void initialize(const NewtonSystem &system, const BorderedOperator &op);
-    bool initialized() const { return velocity_matrix != nullptr; }
+    bool initialized() const { return multiplier_matrix != nullptr; }
     void clear();
 
     /// dst = P⁻¹ src, followed by the patch correction dst += R A_patch⁻¹ Rᵀ (src − J dst)
@@ -171,6 +172,9 @@ namespace fdparticle
     std::unique_ptr<Epetra_CrsMatrix> velocity_matrix, multiplier_matrix, coupling_matrix,
       gradient_matrix;
     TrilinosWrappers::PreconditionAMG velocity_amg, multiplier_amg;
+    /// The program's inverse of A_uu (NewtonSystem::Blocks::velocity_inverse) in place of
+    /// velocity_amg, if it gives one.
+    std::shared_ptr<VelocityBlockInverse> velocity_inverse;
     /// L = G M_u⁻¹ Gᵀ (Cahouet–Chabard) and one AMG V-cycle for it.
     std::unique_ptr<Epetra_CrsMatrix> pressure_laplacian;
     TrilinosWrappers::PreconditionAMG pressure_amg;

@@ -45,8 +45,9 @@ namespace fdparticle
 
     std::string   name() const override { return "iterative"; }
     bool          iterative() const override { return true; }
-    /// The Schur complement approximation reads the cells' pressure mass matrices.
-    AssembledData assembled_data() const override { return {true}; }
+    /// The Schur complement approximation reads the cells' pressure mass matrices; the
+    /// velocity block is inverted by the program's multigrid if so chosen.
+    AssembledData assembled_data() const override { return {true, velocity_multigrid}; }
     void      pattern_changed() override;
     void      operator_changed() override;
     SolveInfo solve(const NewtonSystem &system, const double tolerance,
@@ -58,6 +59,7 @@ namespace fdparticle
     unsigned int basis_size     = 50;
     bool         reuse          = true;
     bool         verbose        = false;
+    bool         velocity_multigrid = false;
     /// See the class documentation: a preconditioner that needs more than this many times
     /// its reference iterations per decade has drifted too far from the operator. 1.5: the
     /// reference is already the slowest solve with the fresh preconditioner (the rate

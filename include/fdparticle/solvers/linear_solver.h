@@ -70,6 +70,9 @@ namespace fdparticle
       /// NewtonSystem::Blocks::pressure_mass and pressure_fluid_mass, the cells' pressure
       /// mass matrices (for a Schur complement approximation).
       bool cell_pressure_masses = false;
+      /// NewtonSystem::Blocks::velocity_inverse, an inverse of the velocity block that
+      /// knows the mesh (the program's geometric multigrid).
+      bool velocity_inverse = false;
     };
     virtual AssembledData assembled_data() const { return {}; }
 

@@ -6,11 +6,14 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <fdparticle/solvers/velocity_block_inverse.h>
+
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <Epetra_CrsMatrix.h>
 
 #include <array>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -134,6 +137,9 @@ namespace fdparticle
       unsigned int particle_block_size = 0;
       /// ρ_f c0 and μ of the step: the scales of the pressure Schur complement.
       double mass_coefficient = 0, viscosity = 0;
+      /// The velocity block's inverse by the program's geometric multigrid, or nullptr:
+      /// the preconditioner builds an AMG V-cycle on A_uu itself.
+      std::shared_ptr<VelocityBlockInverse> velocity_inverse;
     };
     Blocks blocks;
 

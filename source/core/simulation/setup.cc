@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/velocity_multigrid.h>
 #include <fdparticle/fem/block_numbering.h>
 #include <fdparticle/fem/introspection.h>
 
@@ -53,6 +54,14 @@ namespace fdparticle
       linear_solver = create_linear_solver(prm, dof_handler.n_dofs());
     number_dofs_by_block(dof_handler, linear_solver->assembled_data().cell_pressure_masses,
                          system.blocks);
+    if (linear_solver->assembled_data().velocity_inverse)
+      {
+        if (!velocity_multigrid)
+          velocity_multigrid =
+            std::make_shared<VelocityMultigrid<dim>>(assembler.get_mapping(), domain);
+        velocity_multigrid->reinit(dof_handler, system.blocks);
+        system.blocks.velocity_inverse = velocity_multigrid;
+      }
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     // Owned velocity DoFs; λ DoFs of owned and ghost cells (the constraints need them on

@@ -1,0 +1,121 @@
+#ifndef fdparticle_fem_velocity_multigrid_h
+#define fdparticle_fem_velocity_multigrid_h
+
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/diagonal_matrix.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/multigrid/mg_base.h>
+#include <deal.II/multigrid/mg_coarse.h>
+#include <deal.II/multigrid/mg_matrix.h>
+#include <deal.II/multigrid/mg_smoother.h>
+#include <deal.II/multigrid/mg_transfer_global_coarsening.h>
+#include <deal.II/multigrid/multigrid.h>
+
+#include <fdparticle/fem/domain.h>
+#include <fdparticle/fem/velocity_operator.h>
+#include <fdparticle/solvers/newton_system.h>
+#include <fdparticle/solvers/velocity_block_inverse.h>
+
+#include <memory>
+#include <vector>
+
+namespace fdparticle
+{
+  using namespace dealii;
+
+  /**
+   * One geometric multigrid V-cycle for the velocity block K of the Newton matrix
+   * (doc/method.md §8): VelocityOperator on every level, Chebyshev smoothing on its
+   * diagonal, one AMG V-cycle (ML) on the base mesh's operator, assembled. The levels are the mesh coarsened
+   * globally one level at a time (Domain::create_coarsened_copy), each with its own
+   * hanging-node, periodicity and wall constraints, so the particle-following refinement
+   * needs no interface terms; MGTwoLevelTransfer moves between them. The finest level is
+   * K exactly (its cut cells by their assembled matrices); the coarser ones use the Gauss
+   * rule in every cell.
+   *
+   * Use: reinit() whenever the system's DoFs change, set_jacobian() after each assembly
+   * of the Jacobian; the block preconditioner calls initialize() when it rebuilds, which
+   * takes the last Jacobian given. Vectors of vmult() are in the system's velocity block
+   * numbering (NewtonSystem::Blocks); constrained rows are divided by A's diagonal.
+   */
+  template <int dim>
+  class VelocityMultigrid : public VelocityBlockInverse
+  {
+  public:
+    using VectorType = typename VelocityOperator<dim>::VectorType;
+
+    VelocityMultigrid(const Mapping<dim> &mapping, const Domain<dim> &domain);
+    ~VelocityMultigrid() override;
+
+    /// The system's mesh or DoFs changed: the levels are rebuilt by the next set_jacobian().
+    void reinit(const DoFHandler<dim> &system_dofs, const NewtonSystem::Blocks &blocks);
+
+    /// The Jacobian's velocity block: ρ, μ, the BDF weight c0, the iterate (owned system
+    /// layout; nullptr: Stokes) and the cut cells' matrices (NavierStokesAssembler).
+    void set_jacobian(const double density, const double viscosity, const double c0,
+                      const TrilinosWrappers::MPI::Vector *iterate,
+                      std::vector<FullMatrix<double>>      cut_matrices);
+
+    void initialize(const NewtonSystem &system) override;
+    void vmult(TrilinosWrappers::MPI::Vector &      dst,
+               const TrilinosWrappers::MPI::Vector &src) const override;
+
+    /// Levels of the hierarchy and unknowns on each (coarsest first), summed over ranks.
+    std::vector<types::global_dof_index> level_sizes() const;
+
+  private:
+    void build_levels();
+
+    const Mapping<dim> &  mapping;
+    const Domain<dim> &   domain;
+    const FESystem<dim>   fe;
+    const DoFHandler<dim> *system_dofs = nullptr;
+    /// The system's first DoF on this rank.
+    types::global_dof_index first_owned = 0;
+    bool                    levels_current = false;
+
+    /// Coarsest first; the last is the system's own mesh.
+    std::vector<std::shared_ptr<const parallel::distributed::Triangulation<dim>>> meshes;
+    std::vector<std::unique_ptr<DoFHandler<dim>>>                             dof_handlers;
+    MGLevelObject<AffineConstraints<double>>                                 constraints;
+    MGLevelObject<VelocityOperator<dim>>                                      operators;
+    MGLevelObject<MGTwoLevelTransfer<dim, VectorType>>                        transfers;
+    std::unique_ptr<MGTransferGlobalCoarsening<dim, VectorType>>              transfer;
+
+    using Smoother = PreconditionChebyshev<VelocityOperator<dim>, VectorType>;
+    mg::SmootherRelaxation<Smoother, VectorType>             smoother;
+    /// The base mesh's operator assembled, and one ML V-cycle on it as the coarse solve.
+    TrilinosWrappers::SparseMatrix                           coarse_matrix;
+    TrilinosWrappers::PreconditionAMG                        coarse_amg;
+    std::unique_ptr<MGCoarseGridBase<VectorType>>            coarse;
+    std::unique_ptr<mg::Matrix<VectorType>>                  level_matrix;
+    std::unique_ptr<Multigrid<VectorType>>                   multigrid;
+    std::unique_ptr<PreconditionMG<dim, VectorType, MGTransferGlobalCoarsening<dim, VectorType>>>
+      preconditioner;
+
+    /// For each owned DoF of the finest level, its place among the system's owned DoFs
+    /// (the velocity block comes first in each rank's range).
+    std::vector<unsigned int> system_position;
+    /// The finest level's constrained owned DoFs (local index) and 1 / A's diagonal there.
+    std::vector<std::pair<unsigned int, double>> constrained_rows;
+
+    /// The last Jacobian given (set_jacobian), taken by initialize().
+    double                          density = 1, viscosity = 1, c0 = 0;
+    bool                            convection = false;
+    VectorType                      iterate;
+    MGLevelObject<VectorType>       level_iterates;
+    std::vector<FullMatrix<double>> cut_matrices;
+
+    mutable VectorType in, out;
+  };
+} // namespace fdparticle
+
+#endif

@@ -1,0 +1,246 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+
+#include <fdparticle/fem/introspection.h>
+#include <fdparticle/fem/velocity_multigrid.h>
+
+namespace fdparticle
+{
+  namespace
+  {
+    /// The coarse solve: one application of a preconditioner.
+    template <typename VectorType, typename Preconditioner>
+    class ApplyPreconditioner : public MGCoarseGridBase<VectorType>
+    {
+    public:
+      explicit ApplyPreconditioner(const Preconditioner &preconditioner)
+        : preconditioner(preconditioner)
+      {}
+      void operator()(const unsigned int, VectorType &dst, const VectorType &src) const override
+      {
+        preconditioner.vmult(dst, src);
+      }
+
+    private:
+      const Preconditioner &preconditioner;
+    };
+  } // namespace
+
+  template <int dim>
+  VelocityMultigrid<dim>::VelocityMultigrid(const Mapping<dim> &mapping, const Domain<dim> &domain)
+    : mapping(mapping)
+    , domain(domain)
+    , fe(FE_Q<dim>(VelocityOperator<dim>::degree), dim)
+  {}
+
+  template <int dim>
+  VelocityMultigrid<dim>::~VelocityMultigrid() = default;
+
+  template <int dim>
+  void VelocityMultigrid<dim>::reinit(const DoFHandler<dim> &     system_dofs,
+                                      const NewtonSystem::Blocks &blocks)
+  {
+    this->system_dofs = &system_dofs;
+    const MPI_Comm comm = system_dofs.get_communicator();
+    first_owned         = blocks.range[Utilities::MPI::this_mpi_process(comm)][0];
+    levels_current      = false;
+  }
+
+  template <int dim>
+  void VelocityMultigrid<dim>::build_levels()
+  {
+    preconditioner.reset();
+    multigrid.reset();
+    level_matrix.reset();
+    coarse.reset();
+    transfer.reset();
+    const auto &fine = dynamic_cast<const parallel::distributed::Triangulation<dim> &>(
+      system_dofs->get_triangulation());
+    const unsigned int n_levels = fine.n_global_levels();
+    meshes.assign(n_levels, nullptr);
+    meshes.back().reset(&fine, [](const auto *) {});
+    for (unsigned int level = n_levels - 1; level > 0; --level)
+      {
+        auto coarser = std::make_shared<parallel::distributed::Triangulation<dim>>(
+          fine.get_communicator(), fine.get_mesh_smoothing());
+        domain.create_coarsened_copy(*meshes[level], *coarser);
+        meshes[level - 1] = coarser;
+      }
+
+    dof_handlers.clear();
+    constraints.resize(0, n_levels - 1);
+    operators.resize(0, n_levels - 1);
+    transfers.resize(0, n_levels - 1);
+    level_iterates.resize(0, n_levels - 1);
+    for (unsigned int level = 0; level < n_levels; ++level)
+      {
+        dof_handlers.push_back(std::make_unique<DoFHandler<dim>>(*meshes[level]));
+        DoFHandler<dim> &dofs = *dof_handlers.back();
+        dofs.distribute_dofs(fe);
+        IndexSet relevant;
+        DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+        AffineConstraints<double> &c = constraints[level];
+        c.clear();
+        c.reinit(relevant);
+        DoFTools::make_hanging_node_constraints(dofs, c);
+        domain.make_periodicity_constraints(dofs, c);
+        domain.make_wall_constraints(dofs, ComponentMask(dim, true), true, c);
+        c.close();
+        operators[level].reinit(mapping, dofs, c);
+        operators[level].initialize_dof_vector(level_iterates[level]);
+        if (level > 0)
+          transfers[level].reinit_geometric_transfer(dofs, *dof_handlers[level - 1], c,
+                                                     constraints[level - 1]);
+      }
+    transfer = std::make_unique<MGTransferGlobalCoarsening<dim, VectorType>>(
+      transfers, [this](const unsigned int level, VectorType &v) {
+        operators[level].initialize_dof_vector(v);
+      });
+
+    // Each owned fine velocity DoF's place in the system, from the cells both share.
+    const DoFHandler<dim> &   velocity_dofs = *dof_handlers.back();
+    const FiniteElement<dim> &system_fe     = system_dofs->get_fe();
+    const IndexSet            owned         = velocity_dofs.locally_owned_dofs();
+    const IndexSet            system_owned  = system_dofs->locally_owned_dofs();
+    system_position.assign(owned.n_elements(), numbers::invalid_unsigned_int);
+    std::vector<types::global_dof_index> system_cell_dofs(system_fe.n_dofs_per_cell()),
+      cell_dofs(fe.n_dofs_per_cell());
+    const unsigned int n_scalar = fe.base_element(0).n_dofs_per_cell();
+    for (const auto &cell : velocity_dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(cell_dofs);
+          typename DoFHandler<dim>::active_cell_iterator(&fine, cell->level(), cell->index(),
+                                                         system_dofs)
+            ->get_dof_indices(system_cell_dofs);
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int a = 0; a < n_scalar; ++a)
+              {
+                const auto v = cell_dofs[fe.component_to_system_index(c, a)];
+                if (!owned.is_element(v))
+                  continue;
+                const auto s = system_cell_dofs[system_fe.component_to_system_index(
+                  Introspection<dim>::first_velocity_component + c, a)];
+                AssertThrow(system_owned.is_element(s),
+                            ExcMessage("The velocity multigrid needs each velocity DoF owned "
+                                       "by the same rank in both numberings."));
+                system_position[owned.index_within_set(v)] = s - first_owned;
+              }
+        }
+    operators.back().initialize_dof_vector(iterate);
+    operators.back().initialize_dof_vector(in);
+    operators.back().initialize_dof_vector(out);
+    levels_current = true;
+  }
+
+  template <int dim>
+  void VelocityMultigrid<dim>::set_jacobian(const double density, const double viscosity,
+                                            const double                         c0,
+                                            const TrilinosWrappers::MPI::Vector *iterate_in,
+                                            std::vector<FullMatrix<double>>      cut_matrices)
+  {
+    if (!levels_current)
+      build_levels();
+    this->density      = density;
+    this->viscosity    = viscosity;
+    this->c0           = c0;
+    this->cut_matrices = std::move(cut_matrices);
+    convection         = iterate_in != nullptr;
+    if (convection)
+      {
+        const double *values = iterate_in->trilinos_vector()[0];
+        for (unsigned int i = 0; i < system_position.size(); ++i)
+          iterate.local_element(i) = values[system_position[i]];
+      }
+  }
+
+  template <int dim>
+  void VelocityMultigrid<dim>::initialize(const NewtonSystem &system)
+  {
+    AssertThrow(levels_current, ExcMessage("The velocity multigrid has no Jacobian."));
+    const unsigned int n_levels = operators.max_level() + 1;
+    if (convection)
+      {
+        iterate.update_ghost_values();
+        transfer->interpolate_to_mg(level_iterates, iterate);
+      }
+    MGLevelObject<typename Smoother::AdditionalData> smoother_data(0, n_levels - 1);
+    for (unsigned int level = 0; level < n_levels; ++level)
+      {
+        VelocityOperator<dim> &op = operators[level];
+        op.set_coefficients(density, viscosity, c0, convection ? &level_iterates[level] : nullptr);
+        op.set_cut_cell_matrices(level + 1 == n_levels ? cut_matrices :
+                                                         std::vector<FullMatrix<double>>());
+        auto inverse_diagonal = std::make_shared<DiagonalMatrix<VectorType>>();
+        op.compute_diagonal(inverse_diagonal->get_vector());
+        for (auto &entry : inverse_diagonal->get_vector())
+          entry = 1. / entry;
+        auto &data                = smoother_data[level];
+        data.preconditioner       = inverse_diagonal;
+        data.smoothing_range      = 15;
+        data.degree               = 4;
+        data.eig_cg_n_iterations  = 12;
+        data.eigenvalue_algorithm = Smoother::AdditionalData::EigenvalueAlgorithm::power_iteration;
+        data.constraints.copy_from(constraints[level]);
+      }
+    smoother.initialize(operators, smoother_data);
+
+    // The base mesh: ML as the block preconditioner sets it up for the whole velocity block
+    // (the velocity components as near null space).
+    operators[0].compute_matrix(constraints[0], coarse_matrix);
+    TrilinosWrappers::PreconditionAMG::AdditionalData amg;
+    amg.elliptic              = true;
+    amg.higher_order_elements = true;
+    amg.aggregation_threshold = 0.02;
+    amg.smoother_sweeps       = dim == 3 ? 1 : 3;
+    DoFTools::extract_constant_modes(*dof_handlers[0], ComponentMask(dim, true),
+                                     amg.constant_modes);
+    coarse_amg.initialize(coarse_matrix, amg);
+    coarse = std::make_unique<ApplyPreconditioner<VectorType, TrilinosWrappers::PreconditionAMG>>(
+      coarse_amg);
+    level_matrix = std::make_unique<mg::Matrix<VectorType>>(operators);
+    multigrid =
+      std::make_unique<Multigrid<VectorType>>(*level_matrix, *coarse, *transfer, smoother, smoother);
+    preconditioner = std::make_unique<
+      PreconditionMG<dim, VectorType, MGTransferGlobalCoarsening<dim, VectorType>>>(
+      *dof_handlers.back(), *multigrid, *transfer);
+
+    // A's constrained velocity rows hold only their diagonal.
+    constrained_rows.clear();
+    const IndexSet &owned = operators.back().get_matrix_free().get_vector_partitioner()->locally_owned_range();
+    for (unsigned int i = 0; i < system_position.size(); ++i)
+      if (constraints.back().is_constrained(owned.nth_index_in_set(i)))
+        constrained_rows.emplace_back(
+          i, 1. / system.A.diag_element(first_owned + system_position[i]));
+  }
+
+  template <int dim>
+  void VelocityMultigrid<dim>::vmult(TrilinosWrappers::MPI::Vector &      dst,
+                                     const TrilinosWrappers::MPI::Vector &src) const
+  {
+    const double *s = src.trilinos_vector()[0];
+    double *      d = dst.trilinos_vector()[0];
+    for (unsigned int i = 0; i < system_position.size(); ++i)
+      in.local_element(i) = s[system_position[i]];
+    for (const auto &[i, inverse] : constrained_rows)
+      in.local_element(i) = 0;
+    preconditioner->vmult(out, in);
+    for (unsigned int i = 0; i < system_position.size(); ++i)
+      d[system_position[i]] = out.local_element(i);
+    for (const auto &[i, inverse] : constrained_rows)
+      d[system_position[i]] = inverse * s[system_position[i]];
+  }
+
+  template <int dim>
+  std::vector<types::global_dof_index> VelocityMultigrid<dim>::level_sizes() const
+  {
+    std::vector<types::global_dof_index> sizes;
+    for (const auto &dofs : dof_handlers)
+      sizes.push_back(dofs->n_dofs());
+    return sizes;
+  }
+
+  template class VelocityMultigrid<2>;
+  template class VelocityMultigrid<3>;
+} // namespace fdparticle
