@@ -6,7 +6,7 @@ set -euo pipefail
 # reference BLAS, with which the factorization of the 3D sediment scene runs ~5x slower
 # (doc/performance.md). Serial, not pthread: MPI ranks already use the cores.
 packages=(libdeal.ii-dev libeigen3-dev cmake ninja-build g++ openmpi-bin numdiff python3 gnuplot-nox
-          libopenblas0-serial)
+          libopenblas0-serial python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -34,7 +34,8 @@ def main():
     levels = [0, 1, 2, 3]
     res = studylib.run_study(args, "settling_2d.prm",
                              ["--vary", "Geometry/Global refinements=" + ",".join(map(str, levels)),
-                              "--qoi", "terminal-vy,vy-at:0.3,terminal-fy"], out)
+                              "--qoi", "terminal-vy,vy-at:0.3,terminal-fy",
+                              "--reference", "finest"], out)
     if not check(res.returncode == 0, f"the study exits with status 0 (got {res.returncode})"):
         return 1
     progress = re.findall(r"^\[run (\d+)/(\d+), \d\d:\d\d elapsed", res.stdout, re.M)
