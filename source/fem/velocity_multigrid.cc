@@ -156,7 +156,9 @@ namespace fdparticle
   }
 
   template <int dim>
-  void VelocityMultigrid<dim>::initialize(const NewtonSystem &system)
+  void VelocityMultigrid<dim>::initialize(
+    const NewtonSystem &                                     system,
+    const TrilinosWrappers::PreconditionAMG::AdditionalData &amg_settings)
   {
     AssertThrow(levels_current, ExcMessage("The velocity multigrid has no Jacobian."));
     const unsigned int n_levels = operators.max_level() + 1;
@@ -186,14 +188,10 @@ namespace fdparticle
       }
     smoother.initialize(operators, smoother_data);
 
-    // The base mesh: ML as the block preconditioner sets it up for the whole velocity block
-    // (the velocity components as near null space).
+    // The base mesh: ML as the block preconditioner sets it up for the velocity block, the
+    // velocity components of the base mesh as near null space.
     operators[0].compute_matrix(constraints[0], coarse_matrix);
-    TrilinosWrappers::PreconditionAMG::AdditionalData amg;
-    amg.elliptic              = true;
-    amg.higher_order_elements = true;
-    amg.aggregation_threshold = 0.02;
-    amg.smoother_sweeps       = dim == 3 ? 1 : 3;
+    TrilinosWrappers::PreconditionAMG::AdditionalData amg = amg_settings;
     DoFTools::extract_constant_modes(*dof_handlers[0], ComponentMask(dim, true),
                                      amg.constant_modes);
     coarse_amg.initialize(coarse_matrix, amg);

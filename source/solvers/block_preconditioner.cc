@@ -191,7 +191,7 @@ namespace fdparticle
     amg.aggregation_threshold = velocity_aggregation_threshold;
     velocity_inverse = system->blocks.velocity_inverse;
     if (velocity_inverse)
-      velocity_inverse->initialize(*system);
+      velocity_inverse->initialize(*system, amg);
     else
       {
         velocity_matrix = extract(velocity_block, {velocity_block});

@@ -51,12 +51,14 @@ namespace fdparticle
                         "covers a cell the cell-by-cell pressure approximation fails. 0.25 keeps "
                         "the iterations of the whole shell (1) with fewer patch unknowns "
                         "(doc/scaling.md).");
-      prm.declare_entry("Velocity preconditioner", "amg", Patterns::Selection("amg|multigrid"),
+      prm.declare_entry("Velocity preconditioner", "multigrid", Patterns::Selection("amg|multigrid"),
                         "Iterative solver: the approximate inverse of the velocity block inside "
-                        "the block preconditioner (doc/method.md §8). amg: one ML V-cycle on the "
-                        "assembled velocity matrix. multigrid: one geometric multigrid V-cycle on "
-                        "the matrix-free velocity operator over the mesh coarsened level by "
-                        "level; needs no velocity matrix and little set-up (doc/scaling.md).");
+                        "the block preconditioner (doc/method.md §8). multigrid: one geometric "
+                        "multigrid V-cycle on the matrix-free velocity operator over the mesh "
+                        "coarsened level by level down to the base mesh, ML there; no velocity "
+                        "matrix, half the set-up. It gains where the mesh has levels: give a "
+                        "large mesh as few Subdivisions and Global refinements (doc/scaling.md). "
+                        "amg: one ML V-cycle on the assembled velocity matrix.");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),
                         "Print, for every linear solve, the FGMRES and inner iterations, the "
                         "residual reached, the cut-cell patch's size and memory, and rank 0's "

@@ -34,7 +34,9 @@ namespace fdparticle
   /**
    * One geometric multigrid V-cycle for the velocity block K of the Newton matrix
    * (doc/method.md §8): VelocityOperator on every level, Chebyshev smoothing on its
-   * diagonal, one AMG V-cycle (ML) on the base mesh's operator, assembled. The levels are the mesh coarsened
+   * diagonal, one AMG V-cycle (ML, with the block preconditioner's settings) on the base
+   * mesh's operator, assembled: on a mesh without levels below it, the block
+   * preconditioner's ML V-cycle on A_uu. The levels are the mesh coarsened
    * globally one level at a time (Domain::create_coarsened_copy), each with its own
    * hanging-node, periodicity and wall constraints, so the particle-following refinement
    * needs no interface terms; MGTwoLevelTransfer moves between them. The finest level is
@@ -64,7 +66,8 @@ namespace fdparticle
                       const TrilinosWrappers::MPI::Vector *iterate,
                       std::vector<FullMatrix<double>>      cut_matrices);
 
-    void initialize(const NewtonSystem &system) override;
+    void initialize(const NewtonSystem &                                   system,
+                    const TrilinosWrappers::PreconditionAMG::AdditionalData &amg) override;
     void vmult(TrilinosWrappers::MPI::Vector &      dst,
                const TrilinosWrappers::MPI::Vector &src) const override;
 

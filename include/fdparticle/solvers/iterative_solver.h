@@ -59,7 +59,7 @@ namespace fdparticle
     unsigned int basis_size     = 50;
     bool         reuse          = true;
     bool         verbose        = false;
-    bool         velocity_multigrid = false;
+    bool         velocity_multigrid = true;
     /// See the class documentation: a preconditioner that needs more than this many times
     /// its reference iterations per decade has drifted too far from the operator. 1.5: the
     /// reference is already the slowest solve with the fresh preconditioner (the rate

@@ -1,6 +1,7 @@
 #ifndef fdparticle_solvers_velocity_block_inverse_h
 #define fdparticle_solvers_velocity_block_inverse_h
 
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 namespace fdparticle
@@ -21,7 +22,10 @@ namespace fdparticle
     virtual ~VelocityBlockInverse() = default;
 
     /// Build for the system's current Jacobian (called when the preconditioner is rebuilt).
-    virtual void initialize(const NewtonSystem &system) = 0;
+    /// amg: the ML settings the block preconditioner would use on A_uu, for an algebraic
+    /// part (its constant modes are the implementation's to set).
+    virtual void initialize(const NewtonSystem &                                   system,
+                            const TrilinosWrappers::PreconditionAMG::AdditionalData &amg) = 0;
 
     /// dst ≈ K⁻¹ src. Both hold the velocity block's owned DoFs in the block numbering.
     virtual void vmult(TrilinosWrappers::MPI::Vector &      dst,
