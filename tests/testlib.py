@@ -14,9 +14,15 @@ _failures = []
 
 
 def check(condition, message):
-    print(("ok:   " if condition else "FAIL: ") + message)
+    print(("ok:   " if condition else "FAIL: ") + message, flush=True)
     if not condition:
         _failures.append(message)
+    return condition
+
+
+def failed():
+    """The number of failed checks so far."""
+    return len(_failures)
 
 
 def finish():

@@ -118,6 +118,26 @@ namespace fdparticle
   }
 
   template <int dim>
+  void VelocityOperator<dim>::load_cell_data(const unsigned int cell, const unsigned int l,
+                                             double *lengths, double *volumes, double *w,
+                                             double *grad_w) const
+  {
+    using Kernel             = Q2CellKernel<dim>;
+    constexpr unsigned int L = Kernel::lanes, nq = Kernel::n_points;
+    for (unsigned int d = 0; d < dim; ++d)
+      lengths[d * L + l] = cell_inverse_lengths[cell * dim + d];
+    volumes[l] = cell_volumes[cell];
+    if (convection)
+      for (unsigned int q = 0; q < nq; ++q)
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            w[(q * dim + c) * L + l] = iterate_values[cell * nq + q][c][0];
+            for (unsigned int e = 0; e < dim; ++e)
+              grad_w[((q * dim + c) * dim + e) * L + l] = iterate_gradients[cell * nq + q][c][e][0];
+          }
+  }
+
+  template <int dim>
   void VelocityOperator<dim>::local_apply(const MatrixFree<dim, double> &data, VectorType &dst,
                                           const VectorType &                           src,
                                           const std::pair<unsigned int, unsigned int> &cell_range) const
@@ -178,18 +198,7 @@ namespace fdparticle
         const unsigned int l = n_batch;
         for (unsigned int i = 0; i < n; ++i)
           in[i * L + l] = phi.begin_dof_values()[i][0];
-        for (unsigned int d = 0; d < dim; ++d)
-          lengths[d * L + l] = cell_inverse_lengths[cell * dim + d];
-        volumes[l] = cell_volumes[cell];
-        if (convection)
-          for (unsigned int q = 0; q < nq; ++q)
-            for (unsigned int c = 0; c < dim; ++c)
-              {
-                w[(q * dim + c) * L + l] = iterate_values[cell * nq + q][c][0];
-                for (unsigned int e = 0; e < dim; ++e)
-                  grad_w[((q * dim + c) * dim + e) * L + l] =
-                    iterate_gradients[cell * nq + q][c][e][0];
-              }
+        load_cell_data(cell, l, lengths.data(), volumes.data(), w.data(), grad_w.data());
         batch[n_batch++] = cell;
         if (n_batch == L)
           flush();
@@ -317,20 +326,7 @@ namespace fdparticle
         else
           {
             for (unsigned int l = 0; l < L; ++l)
-              {
-                for (unsigned int d = 0; d < dim; ++d)
-                  lengths[d * L + l] = cell_inverse_lengths[cell * dim + d];
-                volumes[l] = cell_volumes[cell];
-                if (convection)
-                  for (unsigned int q = 0; q < nq; ++q)
-                    for (unsigned int c = 0; c < dim; ++c)
-                      {
-                        w[(q * dim + c) * L + l] = iterate_values[cell * nq + q][c][0];
-                        for (unsigned int e = 0; e < dim; ++e)
-                          grad_w[((q * dim + c) * dim + e) * L + l] =
-                            iterate_gradients[cell * nq + q][c][e][0];
-                      }
-              }
+              load_cell_data(cell, l, lengths.data(), volumes.data(), w.data(), grad_w.data());
             for (unsigned int first = 0; first < n; first += L)
               {
                 std::fill(in.begin(), in.end(), 0.0);

@@ -43,14 +43,8 @@ end
 """
 PARTICLE_HEADER = ("time,id,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz,tx,ty,tz,"
                    "contact_fx,contact_fy,contact_fz,radius")
-failures = 0
-
-
-def check(condition, message):
-    global failures
-    print(("ok: " if condition else "FAIL: ") + message, flush=True)
-    failures += not condition
-    return condition
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from testlib import check, failed  # noqa: E402
 
 
 def plot(tool, directory, *options):
@@ -133,8 +127,8 @@ def main():
     os.makedirs(os.path.join(args.work, "empty"))
     check_error(plot(args.tool, os.path.join(args.work, "empty")), "a directory without output")
 
-    print(f"{failures} check(s) failed" if failures else "all checks passed")
-    return 1 if failures else 0
+    print(f"{failed()} check(s) failed" if failed() else "all checks passed")
+    return 1 if failed() else 0
 
 
 if __name__ == "__main__":

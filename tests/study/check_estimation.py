@@ -16,18 +16,13 @@ The tool is loaded as a module; grid_convergence() and recommendation() get
 Usage: check_estimation.py --tool tools/fdparticle-study
 """
 import argparse
+import os
 import sys
 from importlib.machinery import SourceFileLoader
 from importlib.util import module_from_spec, spec_from_loader
 
-failures = 0
-
-
-def check(condition, message):
-    global failures
-    print(("ok: " if condition else "FAIL: ") + message, flush=True)
-    failures += not condition
-    return condition
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from testlib import check, failed  # noqa: E402
 
 
 def load(path):
@@ -105,8 +100,8 @@ def main():
     same = gc(hs, [1.0, 1.0, 1.0])
     check(same["classification"] == tool.UNCHANGED and same["gci"] is None, f"1, 1, 1: {same['classification']}")
 
-    print(f"{failures} check(s) failed" if failures else "all checks passed")
-    return 1 if failures else 0
+    print(f"{failed()} check(s) failed" if failed() else "all checks passed")
+    return 1 if failed() else 0
 
 
 if __name__ == "__main__":

@@ -101,6 +101,11 @@ namespace fdparticle
     const MatrixFree<dim, double> &get_matrix_free() const { return matrix_free; }
 
   private:
+    /// Lane l of the kernel's per-cell inputs (Q2CellKernel::apply) from cell batch cell: 1/h,
+    /// the volume and, with convection, the iterate at the Gauss points.
+    void load_cell_data(const unsigned int cell, const unsigned int l, double *lengths,
+                        double *volumes, double *w, double *grad_w) const;
+
     void local_apply(const MatrixFree<dim, double> &data, VectorType &dst, const VectorType &src,
                      const std::pair<unsigned int, unsigned int> &cell_range) const;
 
