@@ -230,15 +230,6 @@ namespace fdparticle
       d[system_position[i]] = inverse * s[system_position[i]];
   }
 
-  template <int dim>
-  std::vector<types::global_dof_index> VelocityMultigrid<dim>::level_sizes() const
-  {
-    std::vector<types::global_dof_index> sizes;
-    for (const auto &dofs : dof_handlers)
-      sizes.push_back(dofs->n_dofs());
-    return sizes;
-  }
-
   template class VelocityMultigrid<2>;
   template class VelocityMultigrid<3>;
 } // namespace fdparticle

@@ -71,9 +71,6 @@ namespace fdparticle
     void vmult(TrilinosWrappers::MPI::Vector &      dst,
                const TrilinosWrappers::MPI::Vector &src) const override;
 
-    /// Levels of the hierarchy and unknowns on each (coarsest first), summed over ranks.
-    std::vector<types::global_dof_index> level_sizes() const;
-
   private:
     void build_levels();
 
