@@ -21,6 +21,11 @@ over both runs (positions: the box size); FLOOR defaults to 1e-9.
                                    (iterative for a direct scene, direct for an iterative
                                    one), on each number of ranks (or on N ranks only):
                                    particles.csv must agree
+  # test-variant: OLD => NEW       also run the scene with the text OLD replaced by NEW
+  # test-variant-tolerance: REL [FLOOR]  (on each number of ranks; default 1e-9): a scene
+  # test-variant-ignore: COLUMNS   written another way must give the same particles.csv
+                                   but for COLUMNS (e.g. a ball written as an ellipsoid of
+                                   equal axes, turned: all but its orientation)
   # test-check: SCRIPT [ARGS]      run tests/SCRIPT OUTPUT_DIR [ARGS]; it exits non-zero on failure
   # test-expect-output: N TEXT     the run on N ranks must print TEXT on stdout or stderr
                                    (an event that the scene is built to cause, e.g. a
@@ -85,7 +90,7 @@ def read_csv(path):
     return rows[0], rows[1:]
 
 
-def compare_csv(actual, expected, rel, floor, box=None):
+def compare_csv(actual, expected, rel, floor, box=None, ignored=()):
     """Mismatches (empty: the files agree) of two CSV files, value by value, by the rule of
     testlib: |a - b| <= rel * max(|a|, |b|) + floor * S, S the scale of the column's kind
     over both files (positions: box, when given)."""
@@ -104,7 +109,7 @@ def compare_csv(actual, expected, rel, floor, box=None):
     problems = []
     for i, (a_row, e_row) in enumerate(zip(ra, re_)):
         for name, a_text, e_text in zip(ha, a_row, e_row):
-            if name in IGNORED_COLUMNS:
+            if name in IGNORED_COLUMNS or name in ignored:
                 continue
             a, e = float(a_text), float(e_text)
             allowed = max(testlib.allowed_difference(a, e, rel, floor, scales[name]),
@@ -143,7 +148,7 @@ def run(executable, args, ranks, cwd):
 AXES = testlib.AXES
 # Of the vector columns of testlib.VECTOR_FAMILIES, the pseudovectors: a mirror normal to
 # axis a negates component a of a vector and the other components of a pseudovector.
-PSEUDO_COLUMNS = {"w": "angular velocity", "t": "torque"}
+PSEUDO_COLUMNS = {"w": "angular velocity", "t": "torque", "rot": "rotation"}
 
 
 def split_column(name):
@@ -466,6 +471,22 @@ def main():
                 failures.append(f"the run shifted in {axis} exited with {code}")
                 continue
             failures += compare_shifted(out_dir, s_dir, axis, distance, period, radius, tol)
+        if "test-variant" in d:
+            old_text, _, new_text = d["test-variant"].partition("=>")
+            if old_text.strip() not in text:
+                failures.append(f"test-variant: {old_text.strip()!r} is not in the prm")
+            else:
+                v_dir, code = run_variant(opts, text.replace(old_text.strip(), new_text.strip()),
+                                          name, ranks, "variant")
+                if code != 0:
+                    failures.append(f"the variant run exited with {code}")
+                else:
+                    rel, floor = tolerances(d.get("test-variant-tolerance"), "1e-9")
+                    ignored = d.get("test-variant-ignore", "").split()
+                    failures += [f"variant: {p}" for p in
+                                 compare_csv(os.path.join(v_dir, "particles.csv"),
+                                             os.path.join(out_dir, "particles.csv"), rel, floor,
+                                             run_box(out_dir), ignored)]
         solver_ranks = d.get("test-solvers", "").split()[2:]
         if "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks):
             failures += check_other_solver(opts, text, d, name, ranks, out_dir)

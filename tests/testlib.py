@@ -69,7 +69,7 @@ AXES = "xyz"
 # not near zero still fails.
 FLOOR = 1e-9
 # Columns that share a scale: the components of a vector; positions share the box size.
-VECTOR_FAMILIES = ("v", "f", "contact_f", "mean_v", "mean_particle_v", "w", "t")
+VECTOR_FAMILIES = ("v", "f", "contact_f", "mean_v", "mean_particle_v", "w", "t", "rot")
 
 
 def column_family(name):
@@ -87,7 +87,8 @@ def column_scales(header, runs, box=None, radius=None):
     header: S is the largest magnitude of the column's kind over all runs; positions are
     measured against the box size (box), and, given the smallest particle radius, angular
     velocities and torques also against what the translation makes of them (|v|/R, |f| R)
-    and contact forces against the hydrodynamic force."""
+    and the other way round (|w| R, |t|/R),
+    contact forces against the hydrodynamic force and rotation angles against one radian."""
     family = {h: column_family(h) for h in header}
     scale = {}
     for rows in runs:
@@ -102,9 +103,11 @@ def column_scales(header, runs, box=None, radius=None):
     if box is not None:
         scale["position"] = box
     if radius:
-        scale["w"] = max(scale.get("w", 0.0), scale.get("v", 0.0) / radius)
-        scale["t"] = max(scale.get("t", 0.0), scale.get("f", 0.0) * radius)
+        v, w, f, t = (scale.get(k, 0.0) for k in ("v", "w", "f", "t"))
+        scale["w"], scale["v"] = max(w, v / radius), max(v, w * radius)
+        scale["t"], scale["f"] = max(t, f * radius), max(f, t / radius)
     scale["contact_f"] = max(scale.get("contact_f", 0.0), scale.get("f", 0.0))
+    scale["rot"] = max(scale.get("rot", 0.0), 1.0)
     return {h: scale.get(family[h], 0.0) for h in header}
 
 

@@ -143,7 +143,7 @@ namespace fdparticle
     double       gap = std::numeric_limits<double>::max();
     for (const unsigned int k : rule.balls)
       {
-        const double g = particles[k].shape->surface_distance(particles[k].offset(x));
+        const double g = particles[k].shape->surface_distance(particles[k].body_offset(x));
         if (g < gap)
           {
             gap = g;
@@ -246,8 +246,9 @@ namespace fdparticle
       {
         std::vector<Point<dim>> inside, outside;
         std::vector<double>     inside_weights, outside_weights;
-        append_shape_rules(box, centres[0], *particles[meeting[0]].shape, inside,
-                          inside_weights, outside, outside_weights);
+        append_shape_rules(box, centres[0], *particles[meeting[0]].shape,
+                           particles[meeting[0]].geometry_rotation, inside, inside_weights,
+                           outside, outside_weights);
         points.insert(points.end(), inside.begin(), inside.end());
         weights.insert(weights.end(), inside_weights.begin(), inside_weights.end());
         owners.insert(owners.end(), inside.size(), int(meeting[0]));
@@ -264,6 +265,7 @@ namespace fdparticle
   void CutCellQuadrature<dim>::append_shape_rules(const BoundingBox<dim> &box,
                                                   const Point<dim> &       X,
                                                   const Shape<dim> &       shape,
+                                                  const Tensor<2, dim> &   Q,
                                                  std::vector<Point<dim>> &inside_points,
                                                  std::vector<double> &    inside_weights,
                                                  std::vector<Point<dim>> &outside_points,
@@ -274,14 +276,10 @@ namespace fdparticle
       points.insert(points.end(), q.get_points().begin(), q.get_points().end());
       weights.insert(weights.end(), q.get_weights().begin(), q.get_weights().end());
     };
-    // The farthest corner from X, and the largest gap between X and the box in one
-    // direction d: ∂ψ/∂x_d = 2(x_d − X_d) is at least twice that on the box.
-    double far2 = 0, gap = 0;
+    // The farthest corner from X.
+    double far2 = 0;
     for (unsigned int d = 0; d < dim; ++d)
-      {
-        far2 += std::pow(std::max(X[d] - box.lower_bound(d), box.upper_bound(d) - X[d]), 2);
-        gap = std::max(gap, std::max(box.lower_bound(d) - X[d], X[d] - box.upper_bound(d)));
-      }
+      far2 += std::pow(std::max(X[d] - box.lower_bound(d), box.upper_bound(d) - X[d]), 2);
     const double inscribed = shape.inscribed_radius();
     if (far2 < inscribed * inscribed)
       {
@@ -297,9 +295,9 @@ namespace fdparticle
           }
         return;
       }
-    if (gap >= min_height_slope * std::sqrt(far2))
+    if (shape.has_height_direction(box, X, Q, min_height_slope))
       {
-        generator->generate(*shape.level_set(X), box);
+        generator->generate(*shape.level_set(X, Q), box);
         append(generator->get_inside_quadrature(), inside_points, inside_weights);
         append(generator->get_outside_quadrature(), outside_points, outside_weights);
         return;
@@ -337,7 +335,7 @@ namespace fdparticle
             lower[d] = pieces[d][index[d]].first;
             upper[d] = pieces[d][index[d]].second;
           }
-        append_shape_rules(BoundingBox<dim>(std::make_pair(lower, upper)), X, shape,
+        append_shape_rules(BoundingBox<dim>(std::make_pair(lower, upper)), X, shape, Q,
                           inside_points, inside_weights, outside_points, outside_weights);
         unsigned int d = 0;
         while (d < dim && ++index[d] == pieces[d].size())

@@ -66,7 +66,8 @@ namespace fdparticle
       const std::pair<std::string, std::array<double, 3>> vectors[] = {
         {"", three(P.position)},       {"v", three(P.velocity)}, {"w", three(P.omega)},
         {"f", three(P.force)},         {"t", three(P.torque)},
-        {"contact_f", three(P.contact_force)}};
+        {"contact_f", three(P.contact_force)},
+        {"rot", three(RigidBody<dim>::rotation_vector(P.orientation))}};
       for (const auto &[prefix, values] : vectors)
         for (unsigned int d = 0; d < 3; ++d)
           columns.emplace_back(prefix + "xyz"[d], values[d]);
@@ -74,12 +75,24 @@ namespace fdparticle
       return columns;
     }
 
-    /// The point data of a particle in the VTU files: scalars, and vectors of dim
-    /// components. In 2D the angular velocity, torque and rotation are the z components.
+    /// The point data of a particle in the VTU files: scalars, vectors of dim components
+    /// and the shape tensor Q S Qᵀ (dim × dim, the semi-axes turned: ParaView's Tensor
+    /// Glyph with a sphere of radius 1 draws the particle). In 2D the angular velocity,
+    /// torque and rotation are the z components.
     template <int dim>
     std::vector<std::pair<std::string, std::vector<double>>>
     particle_point_data(const Particle<dim> &P)
     {
+      const Eigen::Matrix3d R3 = P.orientation.toRotationMatrix();
+      Tensor<2, dim>        Q;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          Q[i][j] = R3(i, j);
+      const Tensor<2, dim> shape = Q * P.shape->semi_axes_tensor() * transpose(Q);
+      std::vector<double>  tensor;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          tensor.push_back(shape[i][j]);
       const auto vector = [](const Tensor<1, dim> &t) {
         std::vector<double> v(dim);
         for (unsigned int d = 0; d < dim; ++d)
@@ -90,10 +103,7 @@ namespace fdparticle
       const auto axial = [](const Tensor<1, 3> &t) {
         return dim == 2 ? std::vector<double>{t[2]} : std::vector<double>{t[0], t[1], t[2]};
       };
-      const Eigen::AngleAxisd turn(P.orientation);
-      Tensor<1, 3>            rotation;
-      for (unsigned int d = 0; d < 3; ++d)
-        rotation[d] = turn.angle() * turn.axis()[d];
+      const Tensor<1, 3> rotation = RigidBody<dim>::rotation_vector(P.orientation);
       return {{"id", {double(P.id)}},
               {"radius", {P.bounding_radius()}},
               {"density", {P.density}},
@@ -102,7 +112,8 @@ namespace fdparticle
               {"rotation", axial(rotation)},
               {"force", vector(P.force)},
               {"torque", axial(P.torque)},
-              {"contact_force", vector(P.contact_force)}};
+              {"contact_force", vector(P.contact_force)},
+              {"shape", tensor}};
     }
 
     /// One CSV line: the items, comma-separated.
@@ -308,7 +319,8 @@ namespace fdparticle
     DataOutBase::write_pvd_record(pvd, solution_records);
 
     // One VTK point per particle (deal.II's point patches); ParaView draws spheres with a
-    // glyph scaled by 'radius'. VTU data is single precision: exact values are in the CSV.
+    // glyph scaled by 'radius', any shape with a Tensor Glyph of 'shape'. VTU data is
+    // single precision: exact values are in the CSV.
     std::vector<DataOutBase::Patch<0, dim>> patches(particles.size());
     std::vector<std::string>                point_names;
     std::vector<std::tuple<unsigned int, unsigned int, std::string,
@@ -330,7 +342,9 @@ namespace fdparticle
               {
                 if (values.size() > 1)
                   vectors.emplace_back(row, row + values.size() - 1, name,
-                                       DataComponentInterpretation::component_is_part_of_vector);
+                                       name == "shape" ?
+                                         DataComponentInterpretation::component_is_part_of_tensor :
+                                         DataComponentInterpretation::component_is_part_of_vector);
                 point_names.insert(point_names.end(), values.size(), name);
               }
             for (const double v : values)

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <optional>
 
 namespace fdparticle
 {
@@ -186,6 +187,31 @@ namespace fdparticle
     centres_and_radii(particles, &c, x, r);
     for (const auto &pair : search->pairs(x, r, range))
       {
+        const Particle<dim> &A = particles[pair.i], &B = particles[pair.j];
+        if (!A.shape->is_isotropic() || !B.shape->is_isotropic())
+          {
+            // Not two balls: the true gap between the shapes (ContactGeometry).
+            if (ContactGeometry<dim>::pair(A, B, pair.offset, pair.gap).gap >= range)
+              continue;
+            const auto geometry = [&](const Tensor<1, dim> &dXi, const Tensor<1, dim> &dXj) {
+              const Tensor<1, dim> offset = pair.offset + dXi - dXj;
+              return ContactGeometry<dim>::pair(A, B, offset,
+                                                offset.norm() - A.bounding_radius() -
+                                                  B.bounding_radius());
+            };
+            const std::optional<SpringDashpotLaw> spring =
+              contact_model == Model::repulsion ?
+                std::nullopt :
+                std::optional<SpringDashpotLaw>(spring_dashpot(pair.i, pair.j, particles));
+            const RepulsionLaw repulsion = law(pair.i, pair.j);
+            NormalContact<dim>::add_shaped(
+              particles, pair.i, pair.j, geometry,
+              [&](const double gap, const double v_n) {
+                return spring ? spring->value(gap, v_n) : repulsion.value(gap);
+              },
+              range, c, r_p, D);
+            continue;
+          }
         const auto contact =
           NormalContact<dim>::pair(particles, pair.i, pair.j, pair.offset, pair.gap);
         if (contact_model == Model::repulsion)
@@ -225,12 +251,25 @@ namespace fdparticle
     double       min_gap  = diameter;
     for (const auto &pair : search->pairs(x, r, diameter))
       {
-        min_gap = std::min(min_gap, pair.gap);
-        if (pair.gap < range)
+        const double gap =
+          ContactGeometry<dim>::pair(particles[pair.i], particles[pair.j], pair.offset, pair.gap).gap;
+        min_gap = std::min(min_gap, gap);
+        if (gap < range)
           ++n_contacts;
       }
     statistics.set("contacts", n_contacts);
     statistics.set("min_gap", min_gap);
+  }
+
+  template <int dim>
+  void Collisions<dim>::check_scene(const ParticleSet<dim> &particles) const
+  {
+    if (enabled() && friction > 0)
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        AssertThrow(particles[k].shape->is_isotropic(),
+                    ExcMessage("Collisions/Friction coefficient: friction is modelled between spheres and disks, "
+                               "and particle " + std::to_string(k) + " is an " +
+                               particles[k].shape->name() + "; set it to 0."));
   }
 
   template class Collisions<2>;

@@ -49,6 +49,19 @@ namespace fdparticle
   }
 
   template <int dim>
+  void Lubrication<dim>::check_scene(const ParticleSet<dim> &particles) const
+  {
+    // The correction is the sphere's (and the cylinder's) near-contact asymptote.
+    if (on)
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        AssertThrow(particles[k].shape->is_isotropic(),
+                    ExcMessage("Lubrication/Enabled: the lubrication correction is that of "
+                               "spheres and disks, and particle " + std::to_string(k) +
+                               " is an " + particles[k].shape->name() +
+                               "; set Lubrication/Enabled = false."));
+  }
+
+  template <int dim>
   void Lubrication<dim>::initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
                                     const ParticleSet<dim> & /*particles*/,
                                     const double finest_cell_size)

@@ -1,4 +1,5 @@
 #include <fdparticle/particles/normal_contact.h>
+#include <fdparticle/particles/rigid_body.h>
 
 namespace fdparticle
 {
@@ -30,6 +31,72 @@ namespace fdparticle
     contact.relative_velocity = particles[i].velocity;
     contact.v_n               = contact.relative_velocity * normal;
     return contact;
+  }
+
+  template <int dim>
+  void NormalContact<dim>::add_shaped(
+    ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
+    const std::function<ContactGeometry<dim>(const Tensor<1, dim> &, const Tensor<1, dim> &)>
+      &                                                           geometry,
+    const std::function<NormalLawValue(double gap, double v_n)> &law, const double range,
+    const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D)
+  {
+    using RB = RigidBody<dim>;
+    const unsigned int                n_balls = (j == numbers::invalid_unsigned_int ? 1 : 2);
+    const std::array<unsigned int, 2> k{{i, j}};
+    const bool torques = particles.closure() == AngularVelocityClosure::torque_balance;
+    constexpr unsigned int n_rows = RB::n_unknowns;
+    // Force and torque on each particle with the velocities moved by dV.
+    const auto evaluate = [&](const std::array<Tensor<1, dim>, 2> &dV) {
+      const ContactGeometry<dim> at = geometry(dV[0] / c[0], dV[1] / c[0]);
+      Tensor<1, dim> relative = particles[i].velocity + dV[0];
+      if (n_balls == 2)
+        relative -= particles[j].velocity + dV[1];
+      const Tensor<1, dim> F = law(at.gap, relative * at.normal).force * at.normal;
+      std::array<double, 2 * n_rows> rows{};
+      for (unsigned int s = 0; s < n_balls; ++s)
+        {
+          const double         sign = (s == 0 ? 1.0 : -1.0);
+          const Tensor<1, 3>   T = RB::moment(s == 0 ? at.arm_i : at.arm_j, sign * F);
+          for (unsigned int d = 0; d < dim; ++d)
+            rows[s * n_rows + d] = sign * F[d];
+          for (unsigned int r = 0; r < RB::n_rotations; ++r)
+            rows[s * n_rows + dim + r] = torques ? T[RB::rotation_component(r)] : 0.0;
+        }
+      return rows;
+    };
+    const auto at_rest = evaluate({});
+    for (unsigned int s = 0; s < n_balls; ++s)
+      {
+        Particle<dim> &P = particles[k[s]];
+        for (unsigned int d = 0; d < dim; ++d)
+          P.contact_force[d] += at_rest[s * n_rows + d];
+        if (P.first_unknown != numbers::invalid_unsigned_int)
+          for (unsigned int q = 0; q < n_rows; ++q)
+            r_p[P.first_unknown + q] -= at_rest[s * n_rows + q];
+      }
+    if (D == nullptr)
+      return;
+    const double step = 1e-6 * c[0] * range;
+    for (unsigned int t = 0; t < n_balls; ++t)
+      {
+        const unsigned int column = particles[k[t]].first_unknown;
+        if (column == numbers::invalid_unsigned_int)
+          continue;
+        for (unsigned int b = 0; b < dim; ++b)
+          {
+            std::array<Tensor<1, dim>, 2> plus{}, minus{};
+            plus[t][b] = step;
+            minus[t][b] = -step;
+            const auto up = evaluate(plus), down = evaluate(minus);
+            for (unsigned int s = 0; s < n_balls; ++s)
+              if (const unsigned int row = particles[k[s]].first_unknown;
+                  row != numbers::invalid_unsigned_int)
+                for (unsigned int q = 0; q < n_rows; ++q)
+                  D->coeffRef(row + q, column + b) -=
+                    (up[s * n_rows + q] - down[s * n_rows + q]) / (2 * step);
+          }
+      }
   }
 
   template <int dim>

@@ -26,6 +26,13 @@ namespace fdparticle
   }
 
   template <int dim>
+  void ParticleInteractions<dim>::check_scene(const ParticleSet<dim> &particles) const
+  {
+    for (const auto &interaction : list)
+      interaction->check_scene(particles);
+  }
+
+  template <int dim>
   void ParticleInteractions<dim>::initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
                                              const ParticleSet<dim> &particles,
                                              const double            finest_cell_size)

@@ -3,6 +3,8 @@
 #include <fdparticle/particles/particle_file.h>
 #include <fdparticle/particles/random_packing.h>
 #include <fdparticle/particles/particle_set.h>
+#include <fdparticle/particles/contact_geometry.h>
+#include <fdparticle/particles/ellipsoid.h>
 #include <fdparticle/particles/sphere.h>
 
 #include <algorithm>
@@ -18,10 +20,14 @@ namespace fdparticle
     prm.enter_subsection("Particles");
     {
       prm.declare_entry("Particles", "", Patterns::Anything(),
-                        "';'-separated entries 'x, y, z : radius : density [: motion]' (2D: 'x, y "
-                        ": ...'), motion = free (default), fixed, or 'prescribed : vx, vy, vz [: "
-                        "wx, wy, wz]' (constant velocity and angular velocity; 2D: 'vx, vy [: "
-                        "wz]'). Empty: no particles besides Particle file and Random particles.");
+                        "';'-separated entries 'x, y, z : shape : density [: motion]' (2D: 'x, y "
+                        ": ...'). shape = a radius (sphere, disk), 'ellipsoid a, b, c [, ax, ay, "
+                        "az, angle]' (3D: semi-axes along the body axes, the body turned by angle "
+                        "degrees about the axis) or 'ellipse a, b [, angle]' (2D: the a axis at "
+                        "angle degrees from x). motion = free (default), fixed, or 'prescribed : "
+                        "vx, vy, vz [: wx, wy, wz]' (constant velocity and angular velocity; 2D: "
+                        "'vx, vy [: wz]'). Empty: no particles besides Particle file and Random "
+                        "particles.");
       prm.declare_entry("Particle file", "", Patterns::Anything(),
                         "CSV file of more particles, one per line: 'x, y[, z], radius, "
                         "density[, motion[, vx, vy[, vz][, angular velocity]]]' (motion as "
@@ -38,6 +44,54 @@ namespace fdparticle
 
   namespace
   {
+    /// The shape field of an entry: a radius (a ball), 'ellipse a, b [, angle]' (2D; the
+    /// a axis turned by angle degrees from x) or 'ellipsoid a, b, c [, axis x, y, z,
+    /// angle]' (3D; the body turned by angle degrees about the axis). Sets the shape and
+    /// the orientation of p.
+    template <int dim>
+    void read_shape(const std::string &field, const std::string &name, Particle<dim> &p)
+    {
+      using namespace ParameterTools;
+      const std::string text = trim(field);
+      const std::string word = text.substr(0, text.find_first_of(" \t"));
+      if (word != "ellipse" && word != "ellipsoid")
+        {
+          const double radius = to_double(text, name + " radius");
+          AssertThrow(radius > 0, ExcMessage("Parameter '" + name +
+                                             "': the radius must be positive, got " +
+                                             field + "."));
+          p.shape = std::make_shared<const Sphere<dim>>(radius);
+          return;
+        }
+      const std::string form = dim == 2 ? "'ellipse a, b [, angle in degrees]'" :
+                                          "'ellipsoid a, b, c [, axis x, y, z, angle in degrees]'";
+      AssertThrow(word == (dim == 2 ? "ellipse" : "ellipsoid"),
+                  ExcMessage("Parameter '" + name + "': " + (dim == 2 ? "a 2D" : "a 3D") +
+                             " scene has no " + word + "; the shape is a radius or " + form +
+                             "."));
+      std::vector<double> values;
+      for (const std::string &v : split(text.substr(word.size()), ','))
+        values.push_back(to_double(v, name + " " + word));
+      const unsigned int n_angle = (dim == 2 ? 1 : 4);
+      AssertThrow(values.size() == dim || values.size() == dim + n_angle,
+                  ExcMessage("Parameter '" + name + "': '" + text + "' is not of the form " +
+                             form + "."));
+      Tensor<1, dim> axes;
+      for (unsigned int d = 0; d < dim; ++d)
+        axes[d] = values[d];
+      p.shape = std::make_shared<const Ellipsoid<dim>>(axes, name);
+      if (values.size() == dim)
+        return;
+      Eigen::Vector3d axis(0, 0, 1);
+      if (dim == 3)
+        axis = Eigen::Vector3d(values[3], values[4], values[5]);
+      AssertThrow(axis.norm() > 0,
+                  ExcMessage("Parameter '" + name + "': the axis of the rotation is zero."));
+      p.orientation = Eigen::Quaterniond(
+        Eigen::AngleAxisd(values.back() * numbers::PI / 180, axis.normalized()));
+      p.orientation_old = p.orientation;
+    }
+
     /// A particle from the fields of one entry (a Particles/Particles entry or a line of
     /// the particle file): centre, radius, density[, motion[, velocity[, angular
     /// velocity]]]; 'name' says where the entry came from in error messages.
@@ -48,15 +102,11 @@ namespace fdparticle
       using namespace ParameterTools;
       Particle<dim> p;
       p.position = Point<dim>(to_tensor<dim>(fields[0], name + " centre"));
-      const double radius = to_double(fields[1], name + " radius");
+      read_shape(fields[1], name, p);
       p.density = to_double(fields[2], name + " density");
-      AssertThrow(radius > 0, ExcMessage("Parameter '" + name +
-                                           "': the radius must be positive, got " +
-                                           fields[1] + "."));
       AssertThrow(p.density > 0, ExcMessage("Parameter '" + name +
                                             "': the density must be positive, got " +
                                             fields[2] + "."));
-      p.shape = std::make_shared<const Sphere<dim>>(radius);
       if (fields.size() >= 4)
         {
           const std::string &motion = fields[3];
@@ -90,7 +140,7 @@ namespace fdparticle
           p.omega_old = p.omega_old2 = p.omega;
         }
       p.position_old = p.position;
-      p.geometry_center = p.position;
+      p.place(p.position, p.orientation);
       return p;
     }
   } // namespace
@@ -153,9 +203,9 @@ namespace fdparticle
               "Particles/Particles (entry " + std::to_string(particles.size() + 1) + ")";
             AssertThrow(!entry.empty(),
                         ExcMessage("Parameter '" + name +
-                                   "' is empty; entries are 'x, y[, z] : radius : density'."));
+                                   "' is empty; entries are 'x, y[, z] : shape : density'."));
             const std::vector<std::string> fields = split(entry, ':');
-            const std::string form = "'centre : radius : density [: free | fixed | "
+            const std::string form = "'centre : shape : density [: free | fixed | "
                                      "prescribed : velocity [: angular velocity]]'";
             AssertThrow(fields.size() >= 3 && fields.size() <= 6,
                         ExcMessage("Parameter '" + name + "': '" + entry +
@@ -178,7 +228,8 @@ namespace fdparticle
     for (const auto &ball : random.place(listed))
       {
         Particle<dim> p;
-        p.position = p.position_old = p.geometry_center = ball.center;
+        p.position = p.position_old = ball.center;
+        p.place(p.position, p.orientation);
         p.shape = std::make_shared<const Sphere<dim>>(ball.radius);
         p.density = random.density();
         particles.push_back(p);
@@ -195,7 +246,7 @@ namespace fdparticle
     for (Particle<dim> &p : particles)
       {
         wrap(p);
-        p.geometry_center = p.position;
+        p.place(p.position, p.orientation);
       }
     update_index();
 
@@ -216,7 +267,11 @@ namespace fdparticle
     // direction the ball may not touch the wall; in a periodic direction it crosses the
     // faces freely (its images, doc/method.md §12) but must be narrower than the period,
     // or it would overlap its own image.
-    for (const Particle<dim> &p : particles)
+    // The particles as they are now (the step's geometry may have been a prediction).
+    std::vector<Particle<dim>> now(particles);
+    for (Particle<dim> &p : now)
+      p.place(p.position, p.orientation);
+    for (const Particle<dim> &p : now)
       for (unsigned int d = 0; d < dim; ++d)
         {
           const double      lower = domain.lower_corner()[d], upper = domain.upper_corner()[d];
@@ -236,8 +291,9 @@ namespace fdparticle
             }
           AssertThrow(time > 0.0 || (p.position[d] > lower && p.position[d] < upper),
                       ExcMessage(what + " lies outside the box."));
-          AssertThrow(p.position[d] - p.bounding_radius() > lower &&
-                        p.position[d] + p.bounding_radius() < upper,
+          Tensor<1, dim> e;
+          e[d] = 1;
+          AssertThrow(p.position[d] - p.extent(-e) > lower && p.position[d] + p.extent(e) < upper,
                       ExcMessage(what + " overlaps a wall of the box" + when +
                                  (time == 0.0 ? "." : " (see subsection Wall repulsion).")));
         }
@@ -248,11 +304,12 @@ namespace fdparticle
         x.push_back(p.position);
         r.push_back(p.bounding_radius());
       }
-    const auto overlaps = PairSearch<dim>(domain).pairs(x, r, 0.0);
-    AssertThrow(overlaps.empty(),
-                ExcMessage("Particles " + std::to_string(overlaps[0].i) + " and " +
-                           std::to_string(overlaps[0].j) + " overlap" + when +
-                           (time == 0.0 ? "." : " (see subsection Collisions).")));
+    // Bounding balls that overlap, then the shapes themselves.
+    for (const auto &pair : PairSearch<dim>(domain).pairs(x, r, 0.0))
+      AssertThrow(ContactGeometry<dim>::pair(now[pair.i], now[pair.j], pair.offset, pair.gap).gap >= 0,
+                  ExcMessage("Particles " + std::to_string(pair.i) + " and " +
+                             std::to_string(pair.j) + " overlap" + when +
+                             (time == 0.0 ? "." : " (see subsection Collisions).")));
   }
 
   template <int dim>
@@ -338,8 +395,13 @@ namespace fdparticle
   template <int dim>
   void ParticleSet<dim>::prepare_step(const TimeStepper &time)
   {
+    // The orientation as the centre: q^n (BDF1), or q^n turned on by the last step's
+    // rotation scaled to the coming step (the extrapolation of TimeStepper::extrapolate).
+    const double w = time.order() == 1 ? 0.0 : time.next_step() / time.previous_step();
     for (Particle<dim> &p : particles)
-      p.geometry_center = time.extrapolate(p.position, p.position_old);
+      p.place(time.extrapolate(p.position, p.position_old),
+              w == 0.0 ? p.orientation :
+                         RigidBody<dim>::rotate(p.orientation, p.last_rotation(), w));
     update_index();
   }
 
@@ -384,7 +446,12 @@ namespace fdparticle
         p.position_old = p.position;
         p.position = x_new;
         wrap(p);
-        p.orientation = RigidBody<dim>::rotate(p.orientation, p.omega, time.next_step());
+        // The BDF formula for dθ/dt = ω on the rotation vector of the step, δ^{n+1} =
+        // (ω^{n+1} + c2 δ^n)/c0 (c0 + c1 + c2 = 0): δ = Δt ω for BDF1, the analogue of
+        // X^{n+1} for BDF2.
+        const Tensor<1, 3> turn = (p.omega + c[2] * p.last_rotation()) / c[0];
+        p.orientation_old = p.orientation;
+        p.orientation = RigidBody<dim>::rotate(p.orientation, turn, 1.0);
         p.velocity_old2 = p.velocity_old;
         p.velocity_old = p.velocity;
         p.omega_old2 = p.omega_old;
@@ -424,8 +491,12 @@ namespace fdparticle
         for (const auto *t : {&p.omega, &p.omega_old, &p.omega_old2, &p.torque})
           for (unsigned int d = 0; d < 3; ++d)
             out << (*t)[d] << ' ';
-        const auto &q = p.orientation.coeffs();
-        out << q[0] << ' ' << q[1] << ' ' << q[2] << ' ' << q[3] << '\n';
+        for (const auto *o : {&p.orientation, &p.orientation_old})
+          {
+            const auto &q = o->coeffs();
+            out << q[0] << ' ' << q[1] << ' ' << q[2] << ' ' << q[3] << ' ';
+          }
+        out << '\n';
       }
   }
 
@@ -444,9 +515,12 @@ namespace fdparticle
         for (auto *t : {&p.omega, &p.omega_old, &p.omega_old2, &p.torque})
           for (unsigned int d = 0; d < 3; ++d)
             in >> (*t)[d];
-        auto &q = p.orientation.coeffs();
-        in >> q[0] >> q[1] >> q[2] >> q[3];
-        p.geometry_center = p.position;
+        for (auto *o : {&p.orientation, &p.orientation_old})
+          {
+            auto &q = o->coeffs();
+            in >> q[0] >> q[1] >> q[2] >> q[3];
+          }
+        p.place(p.position, p.orientation);
       }
     update_index();
   }

@@ -99,6 +99,16 @@ namespace fdparticle
     return result;
   }
 
+  template <int dim>
+  Tensor<1, 3> RigidBody<dim>::rotation_vector(const Eigen::Quaterniond &q)
+  {
+    const Eigen::AngleAxisd turn(q);
+    Tensor<1, 3>            v;
+    for (unsigned int d = 0; d < 3; ++d)
+      v[d] = turn.angle() * turn.axis()[d];
+    return v;
+  }
+
   template struct RigidBody<2>;
   template struct RigidBody<3>;
 } // namespace fdparticle

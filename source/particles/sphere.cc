@@ -3,6 +3,8 @@
 
 #include <fdparticle/particles/sphere.h>
 
+#include <cmath>
+
 namespace fdparticle
 {
   namespace
@@ -47,9 +49,9 @@ namespace fdparticle
   }
 
   template <int dim>
-  double Sphere<dim>::inertia() const
+  Tensor<2, 3> Sphere<dim>::inertia() const
   {
-    return (dim == 2 ? 0.5 : 0.4) * volume() * R * R;
+    return Tensor<2, 3>((dim == 2 ? 0.5 : 0.4) * volume() * R * R * unit_symmetric_tensor<3>());
   }
 
   template <int dim>
@@ -61,9 +63,23 @@ namespace fdparticle
   }
 
   template <int dim>
-  std::unique_ptr<Function<dim>> Sphere<dim>::level_set(const Point<dim> &X) const
+  std::unique_ptr<Function<dim>> Sphere<dim>::level_set(const Point<dim> &X,
+                                                       const Tensor<2, dim> &) const
   {
     return std::make_unique<SphereLevelSet<dim>>(X, R);
+  }
+
+  template <int dim>
+  bool Sphere<dim>::has_height_direction(const BoundingBox<dim> &box, const Point<dim> &X,
+                                         const Tensor<2, dim> &, const double min_slope) const
+  {
+    double far2 = 0, gap = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        far2 += std::pow(std::max(X[d] - box.lower_bound(d), box.upper_bound(d) - X[d]), 2);
+        gap = std::max(gap, std::max(box.lower_bound(d) - X[d], X[d] - box.upper_bound(d)));
+      }
+    return gap >= min_slope * std::sqrt(far2);
   }
 
   template class Sphere<2>;

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <optional>
 
 namespace fdparticle
 {
@@ -143,6 +144,24 @@ namespace fdparticle
         const RepulsionLaw law{rho, stiffness[k]};
         for (const auto &wall : domain.walls_near(P.position_after_step(c), P.bounding_radius(), rho))
           {
+            if (!P.shape->is_isotropic())
+              {
+                // Not a ball: the gap from its point nearest the wall (ContactGeometry).
+                if (ContactGeometry<dim>::wall(P, wall.normal, wall.gap).gap >= rho)
+                  continue;
+                const std::optional<SpringDashpotLaw> spring_k =
+                  spring_dashpot ? std::optional<SpringDashpotLaw>(spring(k)) : std::nullopt;
+                NormalContact<dim>::add_shaped(
+                  particles, k, numbers::invalid_unsigned_int,
+                  [&](const Tensor<1, dim> &dX, const Tensor<1, dim> &) {
+                    return ContactGeometry<dim>::wall(P, wall.normal, wall.gap + wall.normal * dX);
+                  },
+                  [&](const double gap, const double v_n) {
+                    return spring_k ? spring_k->value(gap, v_n) : law.value(gap);
+                  },
+                  rho, c, r_p, D);
+                continue;
+              }
             const auto contact = NormalContact<dim>::wall(particles, k, wall.normal, wall.gap);
             if (!spring_dashpot)
               {
@@ -160,6 +179,17 @@ namespace fdparticle
                           c, r_p, D);
           }
       }
+  }
+
+  template <int dim>
+  void WallRepulsion<dim>::check_scene(const ParticleSet<dim> &particles) const
+  {
+    if (enabled() && friction > 0)
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        AssertThrow(particles[k].shape->is_isotropic(),
+                    ExcMessage("Wall repulsion/Friction coefficient: friction is modelled between spheres and disks, "
+                               "and particle " + std::to_string(k) + " is an " +
+                               particles[k].shape->name() + "; set it to 0."));
   }
 
   template class WallRepulsion<2>;

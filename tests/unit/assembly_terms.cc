@@ -8,7 +8,8 @@
 // ∂(u, λ)); the particle rows of ParticleEquations likewise with their block D. Every term
 // is at most quadratic in the unknowns, so central differences are exact up to round-off.
 // Two cells: one cut by the ball (fluid momentum, pairing, cut-cell penalties) and one
-// inside it (fluid momentum, interior pressure, pairing); both angular-velocity closures.
+// inside it (fluid momentum, interior pressure, pairing); both angular-velocity closures;
+// a ball, and a turned ellipse or ellipsoid (the torque balance with J = Q J_body Qᵀ).
 // AssemblyScratch's iterate and shape functions, read from the scalar elements, are
 // compared with the FESystem's.
 
@@ -49,8 +50,9 @@ namespace
   struct OneCell
   {
     /// The cell [0, 1]^dim with a ball of radius 0.45 at (0.6, 0.55[, 0.5]) (cut cell) or
-    /// of radius 3 (the cell lies inside it).
-    OneCell(const bool inside, const std::string &closure)
+    /// of radius 3 (the cell lies inside it); or, turned, an ellipse or ellipsoid of
+    /// semi-axes about these (its inertia tensor not diagonal, its ω × Jω not zero).
+    OneCell(const bool inside, const std::string &closure, const bool ellipsoid = false)
       : fe(Introspection<dim>::finite_element())
       , fv(mapping, fe, Introspection<dim>::cell_quadrature(),
            update_values | update_gradients | update_quadrature_points | update_JxW_values)
@@ -76,7 +78,11 @@ namespace
         corner + "\n  set Upper corner = " + far + "\n  set Subdivisions = " +
         (dim == 2 ? "9, 9" : "9, 9, 9") + "\nend\nsubsection Fluid\n  set Density = 1.3\n"
         "  set Viscosity = 0.07\nend\nsubsection Particles\n  set Particles = " + center + " : " +
-        (inside ? "3" : "0.45") + " : 2.5\n  set Angular velocity closure = " + closure +
+        (!ellipsoid ? (inside ? "3" : "0.45") :
+                    dim == 2 ? (inside ? "ellipse 3, 2.4, 35" : "ellipse 0.45, 0.3, 35") :
+                               (inside ? "ellipsoid 3, 2.4, 2.7, 1, 2, 3, 35" :
+                                         "ellipsoid 0.45, 0.3, 0.38, 1, 2, 3, 35")) +
+        " : 2.5\n  set Angular velocity closure = " + closure +
         "\nend\nsubsection Multiplier\n  set Interior pressure penalty = 0.3\nend\n");
       Domain<dim> domain;
       domain.parse_parameters(prm);
@@ -253,13 +259,14 @@ namespace
   };
 
   template <int dim>
-  void check_cell(const bool inside, const std::string &closure)
+  void check_cell(const bool inside, const std::string &closure, const bool ellipsoid = false)
   {
-    OneCell<dim>       cell(inside, closure);
+    OneCell<dim>       cell(inside, closure, ellipsoid);
     const unsigned int n = cell.fe.n_dofs_per_cell();
     const unsigned int m = cell.unknowns.size();
     const auto         at = cell.assemble(cell.coefficients, cell.unknowns, true);
     const std::string  name = std::to_string(dim) + "D " + (inside ? "inside" : "cut") +
+                             (ellipsoid ? (dim == 2 ? " (ellipse)" : " (ellipsoid)") : "") +
                              " cell, " + closure + ": ";
     std::cout << name << std::count(cell.owner.begin(), cell.owner.end(), 0) << " of "
               << cell.owner.size() << " points in the ball" << std::endl;
@@ -333,6 +340,8 @@ int main(int argc, char **argv)
       {
         check_cell<2>(inside, closure);
         check_cell<3>(inside, closure);
+        check_cell<2>(inside, closure, true);
+        check_cell<3>(inside, closure, true);
       }
   return summary();
 }

@@ -13,6 +13,8 @@
 #include <fdparticle/core/simulation.h>
 #include <fdparticle/fem/domain.h>
 #include <fdparticle/particles/collisions.h>
+#include <fdparticle/particles/contact_geometry.h>
+#include <fdparticle/particles/ellipsoid.h>
 #include <fdparticle/particles/lubrication.h>
 #include <fdparticle/particles/pair_search.h>
 #include <fdparticle/particles/particle_set.h>
@@ -127,9 +129,13 @@ namespace
     ParticleSet<dim>  set;
     Collisions<dim>   collisions;
     Lubrication<dim>  lubrication;
-    parse(prm, periodic, particles, domain, fluid, set, collisions, model, lubrication_prm);
+    parse(prm, periodic, particles, domain, fluid, set, collisions, model, lubrication_prm,
+          near_wall ? "  set Range = 0.05\n" : "");
     lubrication.parse_parameters(prm);
     lubrication.initialize(domain, fluid, set, 0.01);
+    WallRepulsion<dim> walls;
+    walls.parse_parameters(prm);
+    walls.initialize(domain, fluid, set, 0.01);
     // A BDF2 step of 0.01 with a history, and velocities that turn the pair a little.
     const std::array<double, 3> c{{1.5 / 0.01, -2 / 0.01, 0.5 / 0.01}};
     std::mt19937                           random(5 + dim);
@@ -150,6 +156,8 @@ namespace
       Eigen::VectorXd r = Eigen::VectorXd::Zero(m);
       collisions.add_to_particle_rows(set, c, r, D);
       lubrication.add_to_particle_rows(set, c, r, D);
+      if (near_wall)
+        walls.add_to_particle_rows(set, c, r, D);
       return r;
     };
     const Eigen::VectorXd y0 = set.get_unknowns();
@@ -166,6 +174,14 @@ namespace
     check(F0.norm() > 0, "a force in range");
     if (!near_wall)
       check((F0 + set[1].contact_force).norm() <= 1e-14 * F0.norm(), "equal and opposite");
+    // A particle that is not a ball is also turned by a contact off its centre line.
+    if (!set[0].shape->is_isotropic() && set[0].first_unknown != numbers::invalid_unsigned_int)
+      {
+        double torque = 0;
+        for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)
+          torque += std::abs(r0[set[0].first_unknown + dim + r]);
+        check(torque > 1e-6 * F0.norm(), "the contact turns the particle that is not a ball");
+      }
     Eigen::MatrixXd difference(m, m);
     for (unsigned int j = 0; j < m; ++j)
       {
@@ -217,7 +233,7 @@ namespace
             "\n  set Friction coefficient = " + std::to_string(friction) + "\n");
     Bounce result;
     result.mass    = density * Sphere<dim>(radius).volume();
-    result.inertia = density * Sphere<dim>(radius).inertia();
+    result.inertia = density * Sphere<dim>(radius).inertia()[2][2];
     const double log_e = std::log(restitution);
     const double t_c   = std::sqrt(result.mass / 2 / stiffness) *
                        std::sqrt(numbers::PI * numbers::PI + log_e * log_e);
@@ -378,7 +394,7 @@ namespace
     walls.initialize(domain, fluid, set, range);
     FloorRun result;
     result.mass    = density * Sphere<dim>(radius).volume();
-    result.inertia = density * Sphere<dim>(radius).inertia();
+    result.inertia = density * Sphere<dim>(radius).inertia()[2][2];
     Particle<dim> &P = set[0];
     P.velocity = P.velocity_old = P.velocity_old2 = V0;
     P.position_old = P.position - dt * V0;
@@ -513,6 +529,105 @@ namespace
 
 } // namespace
 
+namespace
+{
+  /// The contact geometry of ellipses and ellipsoids (ContactGeometry) against their
+  /// surfaces sampled densely: the gap between two of them, turned at random, is the
+  /// smallest distance between the samples (to the sampling's resolution), the contact
+  /// points lie on the surfaces, gap·n apart; an overlapping pair has a negative gap; the
+  /// gap to a wall is the smallest distance of the samples from it.
+  template <int dim>
+  void test_contact_geometry()
+  {
+    std::cout << dim << "D contact geometry of ellipsoids" << std::endl;
+    std::mt19937                           random(11 + dim);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    const auto make = [&](const Point<dim> &X, const Tensor<1, dim> &a) {
+      Particle<dim> p;
+      p.shape = std::make_shared<const Ellipsoid<dim>>(a, "test");
+      Eigen::Vector3d axis(dim == 3 ? uniform(random) : 0, dim == 3 ? uniform(random) : 0, 1);
+      p.place(X, Eigen::Quaterniond(Eigen::AngleAxisd(3 * uniform(random), axis.normalized())));
+      return p;
+    };
+    // Surface samples: the unit circle or sphere mapped by Q diag(a).
+    const auto samples = [&](const Particle<dim> &p, const Tensor<1, dim> &a) {
+      std::vector<Point<dim>> x;
+      const unsigned int      n = (dim == 2 ? 4000 : 120);
+      for (unsigned int s = 0; s < n; ++s)
+        for (unsigned int t = 0; t < (dim == 2 ? 1u : 2 * n); ++t)
+          {
+            const double   phi = 2 * numbers::PI * (dim == 2 ? s : t) / (dim == 2 ? n : 2 * n);
+            const double   theta = numbers::PI * (s + 0.5) / n;
+            Tensor<1, dim> u;
+            u[0] = a[0] * std::cos(phi) * (dim == 3 ? std::sin(theta) : 1.0);
+            u[1] = a[1] * std::sin(phi) * (dim == 3 ? std::sin(theta) : 1.0);
+            if (dim == 3)
+              u[dim - 1] = a[dim - 1] * std::cos(theta);
+            x.push_back(p.geometry_center + p.geometry_rotation * u);
+          }
+      return x;
+    };
+    unsigned int n_pairs = 0, wrong_gap = 0, wrong_points = 0, wrong_wall = 0;
+    double       worst = 0;
+    for (unsigned int trial = 0; trial < 12; ++trial)
+      {
+        Tensor<1, dim> a, b;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            a[d] = 0.2 + 0.1 * uniform(random);
+            b[d] = 0.15 + 0.05 * uniform(random);
+          }
+        Tensor<1, dim> direction;
+        for (unsigned int d = 0; d < dim; ++d)
+          direction[d] = uniform(random);
+        direction /= direction.norm();
+        const double    reach = (trial < 10 ? 0.45 + 0.05 * uniform(random) : 0.1);
+        const Particle<dim> A = make(Point<dim>() + reach * direction, a), B = make(Point<dim>(), b);
+        const double R = A.bounding_radius() + B.bounding_radius();
+        const auto   c = ContactGeometry<dim>::pair(A, B, reach * direction, reach - R);
+        const auto   xa = samples(A, a), xb = samples(B, b);
+        double       sampled = 1e300;
+        for (const auto &p : xa)
+          for (const auto &q : xb)
+            sampled = std::min(sampled, p.distance(q));
+        if (trial >= 10) // deep overlap: centres 0.1 apart
+          {
+            wrong_gap += !(c.gap < 0);
+            continue;
+          }
+        if (sampled < 0.02) // the sampling cannot tell a touching pair from an overlap
+          continue;
+        ++n_pairs;
+        // The samples are a subset of the surfaces: the true gap is at most their distance,
+        // and below it by no more than the sampling's chord error.
+        const double resolution = (dim == 2 ? 1e-6 : 2e-3);
+        worst = std::max(worst, sampled - c.gap);
+        wrong_gap += !(c.gap <= sampled + 1e-12 && c.gap >= sampled - resolution);
+        const Point<dim> pa = A.geometry_center + c.arm_i, pb = B.geometry_center + c.arm_j;
+        const auto       on_surface = [](const Particle<dim> &p, const Point<dim> &x) {
+          return std::abs(p.shape->surface_distance(p.body_offset(x))) < 1e-9;
+        };
+        wrong_points += !(on_surface(A, pa) && on_surface(B, pb) &&
+                          (pa - pb - c.gap * c.normal).norm() < 1e-8);
+        // A wall below B (inward normal e_y) at 0.05 from B's lowest sample.
+        Tensor<1, dim> up;
+        up[1] = 1;
+        double lowest = 1e300;
+        for (const auto &q : xb)
+          lowest = std::min(lowest, q[1]);
+        const double floor = lowest - 0.05;
+        const auto   w = ContactGeometry<dim>::wall(B, up, -floor - B.bounding_radius());
+        wrong_wall += !(std::abs(w.gap - 0.05) < resolution &&
+                        on_surface(B, B.geometry_center + w.arm_i));
+      }
+    check(n_pairs >= 6, std::to_string(n_pairs) + " separated pairs compared");
+    check(wrong_gap == 0, "the gap is the sampled surfaces' distance; negative when overlapping",
+          "largest sampled − gap " + sci(worst));
+    check(wrong_points == 0, "the contact points lie on the surfaces, gap · n apart");
+    check(wrong_wall == 0, "the gap to a wall is the lowest sample's");
+  }
+} // namespace
+
 int main()
 {
   try
@@ -553,6 +668,20 @@ int main()
       test_force<3>("", "0.4, 0.12, 0.5 : 0.1 : 2 ; 0.63, 0.12, 0.5 : 0.1 : 3 : fixed", true,
                     none, lubrication, true);
       test_force<2>("", "0.4, 0.5 : 0.1 : 2 ; 0.66, 0.5 : 0.1 : 3", false, none, lubrication);
+      // Ellipses and ellipsoids: their true gap, the torque of a contact off the line of
+      // centres; a pair in range, the repulsion and the spring-dashpot, and one near the
+      // floor.
+      test_contact_geometry<2>();
+      test_contact_geometry<3>();
+      test_force<2>("", "0.4, 0.5 : ellipse 0.15, 0.08, 30 : 2 ; 0.62, 0.6 : ellipse 0.1, 0.06, -20 : 3",
+                    true);
+      test_force<2>("", "0.4, 0.5 : ellipse 0.15, 0.08, 30 : 2 ; 0.62, 0.6 : ellipse 0.1, 0.06, -20 : 3",
+                    true, spring);
+      test_force<3>("", "0.4, 0.5, 0.5 : ellipsoid 0.15, 0.08, 0.1, 1, 2, 3, 30 : 2 ; "
+                    "0.62, 0.62, 0.52 : ellipsoid 0.1, 0.06, 0.09, 1, 0, 0, 50 : 3", true, spring);
+      test_force<2>("", "0.4, 0.12 : ellipse 0.15, 0.08, 30 : 2", true, none, "", true);
+      test_force<3>("", "0.4, 0.12, 0.5 : ellipsoid 0.15, 0.08, 0.1, 1, 2, 3, 30 : 2", true,
+                    spring, "", true);
     }
   catch (const std::exception &exc)
     {

@@ -1,14 +1,16 @@
 // Unit test of fdparticle::RigidBody<2> and RigidBody<3> (include/fdparticle/particles/rigid_body.h)
-// and of the Sphere shape (include/fdparticle/particles/sphere.h).
+// and of the Sphere and Ellipsoid shapes (include/fdparticle/particles/sphere.h, ellipsoid.h).
 //
 // Every expected value is computed here independently of the library: cross products by
 // the Levi-Civita symbol, gradients by central differences of that cross product, the
 // rotation of a vector by Rodrigues' formula, volumes and moments of inertia by the
-// textbook formulas. The program prints each check and returns 1 if any fails.
+// textbook formulas; whether an ellipsoid meets a box by sampling the box. The program
+// prints each check and returns 1 if any fails.
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/tensor.h>
 
+#include <fdparticle/particles/ellipsoid.h>
 #include <fdparticle/particles/rigid_body.h>
 #include <fdparticle/particles/sphere.h>
 
@@ -17,6 +19,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -176,12 +179,12 @@ namespace
         check_close(Sphere<dim>(R).volume(), vol, 1e-14 * vol,
                     std::string("volume(") + std::to_string(R) + ") == " +
                       (dim == 2 ? "pi R^2" : "4/3 pi R^3"));
-        check_close(Sphere<dim>(R).inertia(), J, 1e-14 * J,
+        check_close(Sphere<dim>(R).inertia()[2][2], J, 1e-14 * J,
                     std::string("inertia(") + std::to_string(R) + ") == " +
                       (dim == 2 ? "(1/2)|P| R^2" : "(2/5)|P| R^2"));
       }
     // Independent cross-check: disk J = pi R^4 / 2, ball J = 8 pi R^5 / 15.
-    check_close(Sphere<dim>(1.3).inertia(),
+    check_close(Sphere<dim>(1.3).inertia()[2][2],
                 dim == 2 ? numbers::PI * std::pow(1.3, 4) / 2 : 8 * numbers::PI * std::pow(1.3, 5) / 15,
                 1e-12, "inertia(1.3) == pi R^4/2 (disk) or 8 pi R^5/15 (ball)");
 
@@ -200,7 +203,7 @@ namespace
     check_close(ball.surface_distance(2 * R * e), R, 1e-14, "surface distance outside");
     check_close(ball.surface_distance(0.25 * R * e), -0.75 * R, 1e-14, "surface distance inside");
     const Point<dim> C = Point<dim>() + 0.3 * e;
-    const auto       psi = ball.level_set(C);
+    const auto       psi = ball.level_set(C, Tensor<2, dim>(unit_symmetric_tensor<dim>()));
     check_close(psi->value(C + R * e), 0, 1e-14, "level set zero on the surface");
     check(psi->value(C) < 0 && psi->value(C + 1.5 * R * e) > 0,
           "level set negative inside, positive outside");
@@ -300,6 +303,161 @@ namespace
   }
 } // namespace
 
+namespace
+{
+  /// The Ellipsoid's geometry, turned by a rotation Q: its axes, a ball of equal axes,
+  /// meets() against sampling the box, the level set's derivatives against central
+  /// differences, and the height direction against the gradient sampled on the box.
+  template <int dim>
+  void test_ellipsoid()
+  {
+    std::cout << "Ellipsoid<" << dim << ">" << std::endl;
+    const std::string   D = std::to_string(dim) + "D: ";
+    Tensor<1, dim>      a;
+    for (unsigned int d = 0; d < dim; ++d)
+      a[d] = 0.5 - 0.15 * d;
+    const Ellipsoid<dim> shape(a, "test");
+    const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, dim == 2 ? Eigen::Vector3d(0, 0, 1) :
+                                       Eigen::Vector3d(1, -2, 2).normalized())
+        .toRotationMatrix();
+    Tensor<2, dim> Q;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        Q[i][j] = R(i, j);
+    check(shape.bounding_radius() == 0.5 && shape.inscribed_radius() == a[dim - 1],
+          D + "bounding and inscribed radius are the largest and smallest semi-axis");
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        Tensor<1, dim> e;
+        e[d] = 1;
+        check(shape.contains(0.999 * a[d] * e) && !shape.contains(1.001 * a[d] * e),
+              D + "contains: along body axis " + std::to_string(d) + " up to a_" + std::to_string(d));
+        check_close(shape.surface_distance(1.5 * a[d] * e), 0.5 * a[d], 1e-14,
+                    D + "surface distance along a body axis");
+      }
+    try
+      {
+        Tensor<1, dim> bad = a;
+        bad[0] = 0;
+        Ellipsoid<dim> none(bad, "Particles/Particles (entry 1)");
+        check(false, D + "a zero semi-axis is refused");
+      }
+    catch (const std::exception &e)
+      {
+        check(std::string(e.what()).find("entry 1") != std::string::npos,
+              D + "a zero semi-axis is refused, naming the entry");
+      }
+
+    // A ball of equal semi-axes: the sphere's answers.
+    Tensor<1, dim> equal;
+    for (unsigned int d = 0; d < dim; ++d)
+      equal[d] = 0.3;
+    const Ellipsoid<dim> round(equal, "test");
+    const Sphere<dim>    ball(0.3);
+    check_close(round.volume(), ball.volume(), 1e-15, D + "equal semi-axes: the ball's volume");
+    // 2D uses only J_zz (the lamina's in-plane entries are not the disk's).
+    if (dim == 2)
+      check_close(round.inertia()[2][2], ball.inertia()[2][2], 1e-15,
+                  D + "equal semi-axes: the ball's inertia");
+    else
+      check_close(round.inertia(), ball.inertia(), 1e-15, D + "equal semi-axes: the ball's inertia");
+
+    std::mt19937                           rng(7);
+    std::uniform_real_distribution<double> u(-0.6, 0.4), size(0.02, 0.4);
+    const Point<dim>                       X;
+    unsigned int n_boxes = 0, n_meeting = 0, wrong_meets = 0, wrong_height = 0, n_height = 0,
+                 round_differs = 0;
+    for (unsigned int b = 0; b < 400; ++b)
+      {
+        Point<dim> lo, hi;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] = u(rng);
+            hi[d] = lo[d] + size(rng);
+          }
+        const BoundingBox<dim> box(std::make_pair(lo, hi));
+        // ψ on a grid of the box: its smallest value, and the gradient's range.
+        const unsigned int n = (dim == 2 ? 60 : 24);
+        double             lowest = 1e300;
+        Tensor<1, dim>     g_min, g_max;
+        double             g_norm = 0;
+        const auto         psi = shape.level_set(X, Q);
+        for (unsigned int i = 0; i < std::pow(n + 1, dim); ++i)
+          {
+            Point<dim>   x;
+            unsigned int rest = i;
+            for (unsigned int d = 0; d < dim; ++d, rest /= (n + 1))
+              x[d] = lo[d] + (hi[d] - lo[d]) * double(rest % (n + 1)) / n;
+            lowest = std::min(lowest, psi->value(x));
+            const Tensor<1, dim> g = psi->gradient(x);
+            g_norm = std::max(g_norm, g.norm());
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                g_min[d] = (i == 0 ? g[d] : std::min(g_min[d], g[d]));
+                g_max[d] = (i == 0 ? g[d] : std::max(g_max[d], g[d]));
+              }
+          }
+        ++n_boxes;
+        const bool meets = shape.meets(box, X, Q);
+        n_meeting += meets;
+        // A grid point inside: the box meets it. The grid's lowest ψ well above 0 (by more
+        // than ψ can dip between grid points): it does not.
+        if ((lowest < -1e-3 && !meets) || (lowest > 0.05 && meets))
+          ++wrong_meets;
+        if (shape.has_height_direction(box, X, Q, 0.2))
+          {
+            ++n_height;
+            bool some = false;
+            for (unsigned int d = 0; d < dim; ++d)
+              some = some || std::max(g_min[d], -g_max[d]) >= 0.2 * g_norm * (1 - 1e-12);
+            wrong_height += !some;
+          }
+        round_differs += (round.has_height_direction(box, X, Q, 0.2) !=
+                          ball.has_height_direction(box, X, Q, 0.2)) +
+                         (round.meets(box, X, Q) != (std::sqrt([&] {
+                            double d2 = 0;
+                            for (unsigned int d = 0; d < dim; ++d)
+                              d2 += std::pow(std::max({lo[d] - X[d], 0.0, X[d] - hi[d]}), 2);
+                            return d2;
+                          }()) < 0.3 * (1 - 1e-10)));
+      }
+    check(n_meeting > 40 && n_meeting < n_boxes - 40,
+          D + "the random boxes are mixed: " + std::to_string(n_meeting) + " of " +
+            std::to_string(n_boxes) + " meet the ellipsoid");
+    check(wrong_meets == 0, D + "meets() agrees with ψ sampled on the box",
+          std::to_string(wrong_meets) + " boxes differ");
+    check(n_height > 20 && wrong_height == 0,
+          D + "a height direction where the sampled gradient has one (" +
+            std::to_string(n_height) + " boxes)",
+          std::to_string(wrong_height) + " boxes without");
+    check(round_differs == 0, D + "equal semi-axes: the ball's height directions and boxes met");
+
+    // The level set's derivatives, turned, against central differences.
+    const Point<dim> C = Point<dim>() + 0.1 * Q[0];
+    const auto       psi = shape.level_set(C, Q);
+    Tensor<1, dim>   on;
+    for (unsigned int d = 0; d < dim; ++d)
+      on[d] = Q[d][1] * a[1];
+    check_close(psi->value(C + on), 0.0, 1e-14, D + "level set zero at C + Q a_1 e_1");
+    const double     h = 1e-5;
+    const Point<dim> x = C + 0.2 * Q[1] - 0.1 * Q[0];
+    Tensor<1, dim>   fd;
+    Tensor<2, dim>   fd2;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        Tensor<1, dim> dx;
+        dx[d] = h;
+        fd[d] = (psi->value(x + dx) - psi->value(x - dx)) / (2 * h);
+        const Tensor<1, dim> dg = (psi->gradient(x + dx) - psi->gradient(x - dx)) / (2 * h);
+        for (unsigned int e = 0; e < dim; ++e)
+          fd2[e][d] = dg[e];
+      }
+    check_close(psi->gradient(x), fd, 1e-8, D + "level-set gradient = central differences");
+    check_close(Tensor<2, dim>(psi->hessian(x)), fd2, 1e-7, D + "level-set Hessian = central differences");
+  }
+} // namespace
+
 int main()
 {
   try
@@ -308,6 +466,8 @@ int main()
       test_algebra<3>();
       test_rotate<2>();
       test_rotate<3>();
+      test_ellipsoid<2>();
+      test_ellipsoid<3>();
     }
   catch (const std::exception &exc)
     {

@@ -43,6 +43,8 @@ namespace fdparticle
     /// The size of the next step: the current one, shortened to land on the end time
     /// (the last two steps share the remainder when it is less than two steps).
     double       next_step() const;
+    /// Δt_{n−1}, the size of the last completed step.
+    double       previous_step() const { return dt_previous; }
     /// Whether the end time is reached.
     bool         finished() const;
     /// A line for the start of a run when End time is not a multiple of Time step (the

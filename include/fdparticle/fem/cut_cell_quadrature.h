@@ -125,11 +125,11 @@ namespace fdparticle
      * (Shape::level_set). A box whose closure holds the centre is split first (at the
      * centre, then in halves): there the level set has no height direction and deal.II's
      * generator falls back to rules that are wrong by up to 14 % for the Q2 integrands
-     * and not mirror symmetric. The height-direction test assumes a level set whose
-     * gradient points away from the centre, as the sphere's does.
+     * and not mirror symmetric. Whether a piece has a height direction is the shape's
+     * answer (Shape::has_height_direction); Q turns the shape (body to world).
      */
     void append_shape_rules(const BoundingBox<dim> &box, const Point<dim> &X,
-                            const Shape<dim> &       shape,
+                            const Shape<dim> &shape, const Tensor<2, dim> &Q,
                             std::vector<Point<dim>> &inside_points,
                             std::vector<double> &    inside_weights,
                             std::vector<Point<dim>> &outside_points,

@@ -50,6 +50,8 @@ namespace fdparticle
                     const ParticleSet<dim> &particles, const double finest_cell_size) override;
 
     bool enabled() const override { return on; }
+    /// Spheres and disks only.
+    void check_scene(const ParticleSet<dim> &particles) const override;
 
     /// Subtract the correction at X^{n+1}(V), V from the force-balance rows of the free
     /// balls, its derivative from D (if given), and add it to every ball's contact_force.

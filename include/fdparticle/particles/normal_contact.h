@@ -3,12 +3,14 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <fdparticle/particles/contact_geometry.h>
 #include <fdparticle/particles/particle_set.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include <array>
+#include <functional>
 
 namespace fdparticle
 {
@@ -49,6 +51,20 @@ namespace fdparticle
     /// Ball i at gap g from a wall of inward normal n.
     static NormalContact wall(const ParticleSet<dim> &particles, const unsigned int i,
                               const Tensor<1, dim> &normal, const double gap);
+    /**
+     * A contact of particles i and j (j = numbers::invalid_unsigned_int: a wall) that are
+     * not both balls: the force f(g, v_n) n on i at the contact geometry of the end-of-step
+     * positions, −F on j, and with the torque balance the torques arm × (±F) about each
+     * centre. geometry(δX_i, δX_j) gives it for the positions moved by δX; D by central
+     * differences in the velocities (X^{n+1} = (V − c1 X^n − c2 X^{n−1})/c0), step
+     * 10⁻⁶ c0 range.
+     */
+    static void add_shaped(
+      ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
+      const std::function<ContactGeometry<dim>(const Tensor<1, dim> &, const Tensor<1, dim> &)>
+        &                                                           geometry,
+      const std::function<NormalLawValue(double gap, double v_n)> &law, const double range,
+      const std::array<double, 3> &c, Eigen::VectorXd &r_p, Eigen::SparseMatrix<double> *D);
 
     double gap() const { return g; }
     double normal_velocity() const { return v_n; }

@@ -39,6 +39,9 @@ namespace fdparticle
                             const double            finest_cell_size) = 0;
     /// Whether the scene switched it on.
     virtual bool enabled() const = 0;
+    /// Throw a one-line error if the interaction, enabled, cannot serve these particles
+    /// (before anything is written).
+    virtual void check_scene(const ParticleSet<dim> & /*particles*/) const {}
     /// A line for the start of a run (e.g. a contact time against the time step dt), or "".
     virtual std::string describe(const double /*dt*/) const { return ""; }
     /**

@@ -21,6 +21,8 @@ namespace fdparticle
   public:
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);
+    /// ParticleInteraction::check_scene of each.
+    void        check_scene(const ParticleSet<dim> &particles) const;
 
     void initialize(const Box<dim> &domain, const Fluid<dim> &fluid,
                     const ParticleSet<dim> &particles, const double finest_cell_size);

@@ -5,6 +5,7 @@
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
 #include <fdparticle/base/box.h>
@@ -60,10 +61,22 @@ namespace fdparticle
 
     /// X^n and X^{n−1}; geometry_center is where the ball sits during the current step.
     Point<dim> position, position_old, geometry_center;
+    /// The orientation during the current step (predicted as geometry_center is) and its
+    /// rotation matrix Q, body to world: what the geometry of a shape that is not
+    /// isotropic is turned by (place()).
+    Eigen::Quaterniond geometry_orientation = Eigen::Quaterniond::Identity();
+    Tensor<2, dim>     geometry_rotation = unit_symmetric_tensor<dim>();
     /// V and ω: current iterate (t^{n+1} during a step) and the two previous levels.
     Tensor<1, dim> velocity, velocity_old, velocity_old2;
     Tensor<1, 3>   omega, omega_old, omega_old2;
+    /// q^n and q^{n−1}: the orientation at the last two time levels.
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    Eigen::Quaterniond orientation_old = Eigen::Quaterniond::Identity();
+    /// δ^n: the rotation vector (angle times axis) that turned q^{n−1} into q^n.
+    Tensor<1, 3> last_rotation() const
+    {
+      return RigidBody<dim>::rotation_vector(orientation * orientation_old.inverse());
+    }
 
     /// Hydrodynamic force (buoyancy included) and torque of the last step.
     Tensor<1, dim> force;
@@ -90,8 +103,30 @@ namespace fdparticle
     {
       return c[0] * omega + c[1] * omega_old + c[2] * omega_old2;
     }
+    /// Put the particle's geometry at X turned by q for the coming step.
+    void place(const Point<dim> &X, const Eigen::Quaterniond &q)
+    {
+      geometry_center = X;
+      geometry_orientation = q;
+      const Eigen::Matrix3d R = q.toRotationMatrix();
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          geometry_rotation[i][j] = R(i, j);
+    }
+
     double volume() const { return shape->volume(); }
-    double inertia() const { return shape->inertia(); }
+    /// J/ρ in the world frame during the step: Q J_body Qᵀ (3 × 3; 2D uses zz).
+    Tensor<2, 3> inertia() const
+    {
+      if (shape->is_isotropic())
+        return shape->inertia();
+      const Eigen::Matrix3d R = geometry_orientation.toRotationMatrix();
+      Tensor<2, 3>          Q;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          Q[i][j] = R(i, j);
+      return Q * shape->inertia() * transpose(Q);
+    }
     /// The radius of the ball about the centre that holds the particle: what bins, walls
     /// and the contact models see (Shape::bounding_radius).
     double bounding_radius() const { return shape->bounding_radius(); }
@@ -111,16 +146,44 @@ namespace fdparticle
     /// Whether x is in the particle, its surface included (within surface_tolerance).
     /// The nearest image is the only one that can contain x (a particle is narrower
     /// than a period).
-    bool contains(const Point<dim> &x) const { return shape->contains(offset(x)); }
-    /// Whether the particle's bounding ball overlaps the box by more than touching
-    /// (within surface_tolerance).
+    bool contains(const Point<dim> &x) const { return shape->contains(body_offset(x)); }
+    /// The point of the particle farthest along the world direction n (|n| = 1), as an
+    /// offset from the centre, turned as during the step (Shape::support_point).
+    Tensor<1, dim> support_point(const Tensor<1, dim> &n) const
+    {
+      return shape->is_isotropic() ?
+               shape->support_point(n) :
+               geometry_rotation * shape->support_point(transpose(geometry_rotation) * n);
+    }
+    /// How far the particle reaches from its centre along n: n · support_point(n).
+    double extent(const Tensor<1, dim> &n) const
+    {
+      return shape->is_isotropic() ? bounding_radius() : n * support_point(n);
+    }
+
+    /// offset(x) in the body frame, Qᵀ (x − X) (unturned for an isotropic shape): what
+    /// Shape's questions take.
+    Tensor<1, dim> body_offset(const Point<dim> &x) const
+    {
+      const Tensor<1, dim> r = offset(x);
+      return shape->is_isotropic() ? r : transpose(geometry_rotation) * r;
+    }
+    /// Whether the particle overlaps the box by more than touching (within
+    /// surface_tolerance): its bounding ball does, and so does the shape.
     bool meets(const BoundingBox<dim> &box) const
     {
-      return distance_to(box) < bounding_radius() * (1 - surface_tolerance);
+      const Point<dim> X = centre_nearest(box);
+      return distance(box, X) < bounding_radius() * (1 - surface_tolerance) &&
+             (shape->is_isotropic() || shape->meets(box, X, geometry_rotation));
     }
     /// Distance from the nearest image of the centre to the nearest point of box (0 if
     /// the centre is inside).
     double distance_to(const BoundingBox<dim> &box) const
+    {
+      return distance(box, centre_nearest(box));
+    }
+    /// The image of the centre nearest to the box.
+    Point<dim> centre_nearest(const BoundingBox<dim> &box) const
     {
       // The image nearest to the box's middle is, direction by direction, the nearest to
       // the box: the gap to an interval grows with the distance to its middle.
@@ -129,7 +192,7 @@ namespace fdparticle
         if (period[d] > 0)
           X[d] += period[d] *
                   std::round((0.5 * (box.lower_bound(d) + box.upper_bound(d)) - X[d]) / period[d]);
-      return distance(box, X);
+      return X;
     }
     /// The images of the centre closer than reach to the box: one unless the ball crosses
     /// a periodic face and the box reaches both sides of the period.

@@ -41,6 +41,9 @@ namespace fdparticle
     /// Curl of a velocity gradient G_il = ∂_l u_i as a 3-vector (2D: z component only).
     static Tensor<1, 3> curl(const Tensor<2, dim> &grad_u);
 
+    /// The rotation vector of a unit quaternion: angle (in [0, π]) times axis.
+    static Tensor<1, 3> rotation_vector(const Eigen::Quaterniond &q);
+
     /// Advance a unit quaternion by the rotation ω Δt (exact for constant ω in the step).
     static Eigen::Quaterniond rotate(const Eigen::Quaterniond &q,
                                      const Tensor<1, 3> &      omega,

@@ -85,6 +85,7 @@ namespace fdparticle
     refinement.check_scene(domain, particles);
     checkpointer.parse_parameters(prm, output.directory());
     interactions.parse_parameters(prm);
+    interactions.check_scene(particles);
     declare_statistics();
     prm.enter_subsection("Initial conditions");
     hydrostatic_start = (prm.get("Pressure") == "hydrostatic");

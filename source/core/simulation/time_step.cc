@@ -160,14 +160,19 @@ namespace fdparticle
   template <int dim>
   void Simulation<dim>::update_particle_forces(const std::vector<ParticleIntegrals<dim>> &integrals)
   {
-    // doc/method.md §0, §9: F = ρ_f|P|(dV/dt − g) − <λ, e_i>, T = ρ_f J dω/dt − <λ, e_j × r>.
+    // doc/method.md §0, §9: F = ρ_f|P|(dV/dt − g) − <λ, e_i>, T = ρ_f d(Jω)/dt − <λ, e_j × r>.
     const auto c = time.coefficients();
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         Particle<dim> &P = particles[k];
         P.force = fluid.density * P.volume() * (P.acceleration(c) - fluid.gravity) -
                   integrals[k].lambda_force;
-        P.torque = fluid.density * P.inertia() * P.angular_acceleration(c) - integrals[k].lambda_torque;
+        const Tensor<2, 3> J = P.inertia();
+        const Tensor<1, 3> dwdt = P.angular_acceleration(c);
+        P.torque = (P.shape->is_isotropic() || dim == 2 ?
+                      fluid.density * J[2][2] * dwdt :
+                      fluid.density * (J * dwdt + cross_product_3d(P.omega, J * P.omega))) -
+                   integrals[k].lambda_torque;
         if (dim == 2)
           P.torque[0] = P.torque[1] = 0;
       }

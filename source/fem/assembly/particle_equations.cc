@@ -25,15 +25,37 @@ namespace fdparticle
             if (with_matrix)
               system.D.coeffRef(f + d, f + d) = drho * P.volume() * c[0];
           }
+        // (F5) with J = Q J_body Qᵀ: d(Jω)/dt = J dω/dt + ω × Jω, whose last term vanishes
+        // for an isotropic J (a ball) and in 2D.
+        const Tensor<2, 3> J = P.inertia();
+        const bool         isotropic = P.shape->is_isotropic() || dim == 2;
+        const Tensor<1, 3> Jw = J * P.omega;
+        const Tensor<1, 3> angular_rate =
+          isotropic ? Tensor<1, 3>() : J * dwdt + cross_product_3d(P.omega, Jw);
         for (unsigned int j = 0; j < RB::n_rotations; ++j)
           {
             const Tensor<1, 3> e = RB::rotation_axis(j);
-            if (particles.closure() == AngularVelocityClosure::torque_balance)
+            const unsigned int cj = RB::rotation_component(j);
+            if (particles.closure() == AngularVelocityClosure::torque_balance && isotropic)
               {
                 system.r_p[f + dim + j] =
-                  drho * P.inertia() * (dwdt * e) + integrals[k].lambda_torque * e;
+                  drho * J[cj][cj] * (dwdt * e) + integrals[k].lambda_torque * e;
                 if (with_matrix)
-                  system.D.coeffRef(f + dim + j, f + dim + j) = drho * P.inertia() * c[0];
+                  system.D.coeffRef(f + dim + j, f + dim + j) = drho * J[cj][cj] * c[0];
+              }
+            else if (particles.closure() == AngularVelocityClosure::torque_balance)
+              {
+                system.r_p[f + dim + j] = drho * angular_rate[cj] + integrals[k].lambda_torque * e;
+                // ∂/∂ω of (c0 J ω + ω × Jω) = c0 J + [ω]× J − [Jω]×.
+                if (with_matrix)
+                  for (unsigned int m = 0; m < RB::n_rotations; ++m)
+                    {
+                      const Tensor<1, 3> em = RB::rotation_axis(m);
+                      const Tensor<1, 3> column = c[0] * (J * em) +
+                                                  cross_product_3d(P.omega, J * em) -
+                                                  cross_product_3d(Jw, em);
+                      system.D.coeffRef(f + dim + j, f + dim + m) = drho * column[cj];
+                    }
               }
             else
               {
