@@ -3,6 +3,8 @@
 
 #include <fdparticle/fem/cut_cell_quadrature.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <limits>
 
@@ -217,7 +219,14 @@ namespace fdparticle
     for (const unsigned int k : balls)
       {
         const Particle<dim> &p = particles[k];
-        const auto images = p.centres_near(box, p.bounding_radius() * (1 - Particle<dim>::surface_tolerance));
+        auto images = p.centres_near(box, p.bounding_radius() * (1 - Particle<dim>::surface_tolerance));
+        // A shape that is not a ball meets fewer boxes than its bounding ball.
+        if (!p.shape->is_isotropic())
+          images.erase(std::remove_if(images.begin(), images.end(),
+                                      [&](const Point<dim> &X) {
+                                        return !p.shape->meets(box, X, p.geometry_rotation);
+                                      }),
+                       images.end());
         if (!images.empty())
           meeting.push_back(k);
         centres.insert(centres.end(), images.begin(), images.end());

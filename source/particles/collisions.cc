@@ -265,11 +265,7 @@ namespace fdparticle
   void Collisions<dim>::check_scene(const ParticleSet<dim> &particles) const
   {
     if (enabled() && friction > 0)
-      for (unsigned int k = 0; k < particles.size(); ++k)
-        AssertThrow(particles[k].shape->is_isotropic(),
-                    ExcMessage("Collisions/Friction coefficient: friction is modelled between spheres and disks, "
-                               "and particle " + std::to_string(k) + " is an " +
-                               particles[k].shape->name() + "; set it to 0."));
+      this->require_balls(particles, "Collisions/Friction coefficient", "friction", "set it to 0");
   }
 
   template class Collisions<2>;

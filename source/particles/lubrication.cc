@@ -53,12 +53,8 @@ namespace fdparticle
   {
     // The correction is the sphere's (and the cylinder's) near-contact asymptote.
     if (on)
-      for (unsigned int k = 0; k < particles.size(); ++k)
-        AssertThrow(particles[k].shape->is_isotropic(),
-                    ExcMessage("Lubrication/Enabled: the lubrication correction is that of "
-                               "spheres and disks, and particle " + std::to_string(k) +
-                               " is an " + particles[k].shape->name() +
-                               "; set Lubrication/Enabled = false."));
+      this->require_balls(particles, "Lubrication/Enabled", "the lubrication correction",
+                          "set Lubrication/Enabled = false");
   }
 
   template <int dim>

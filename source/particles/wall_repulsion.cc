@@ -185,11 +185,7 @@ namespace fdparticle
   void WallRepulsion<dim>::check_scene(const ParticleSet<dim> &particles) const
   {
     if (enabled() && friction > 0)
-      for (unsigned int k = 0; k < particles.size(); ++k)
-        AssertThrow(particles[k].shape->is_isotropic(),
-                    ExcMessage("Wall repulsion/Friction coefficient: friction is modelled between spheres and disks, "
-                               "and particle " + std::to_string(k) + " is an " +
-                               particles[k].shape->name() + "; set it to 0."));
+      this->require_balls(particles, "Wall repulsion/Friction coefficient", "friction", "set it to 0");
   }
 
   template class WallRepulsion<2>;

@@ -58,6 +58,19 @@ namespace fdparticle
     virtual void statistics(const ParticleSet<dim> & /*particles*/,
                             StatisticsTable & /*statistics*/) const
     {}
+
+  protected:
+    /// Throw "ENTRY: WHAT is modelled between spheres and disks, and particle k is an
+    /// ellipse; FIX." if a particle is not a ball.
+    static void require_balls(const ParticleSet<dim> &particles, const std::string &entry,
+                              const std::string &what, const std::string &fix)
+    {
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        AssertThrow(particles[k].shape->is_isotropic(),
+                    ExcMessage(entry + ": " + what + " is modelled between spheres and disks, "
+                               "and particle " + std::to_string(k) + " is an " +
+                               particles[k].shape->name() + "; " + fix + "."));
+    }
   };
 } // namespace fdparticle
 
