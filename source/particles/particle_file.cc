@@ -32,7 +32,7 @@ namespace fdparticle
   std::string ParticleFile<dim>::line_form()
   {
     return std::string(dim == 2 ? "x, y" : "x, y, z") +
-           ", radius, density[, motion[, velocity[, angular velocity]]]";
+           ", radius or shape, density[, motion[, velocity[, angular velocity]]]";
   }
 
   template <int dim>

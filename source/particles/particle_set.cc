@@ -8,6 +8,7 @@
 #include <fdparticle/particles/sphere.h>
 
 #include <algorithm>
+#include <sstream>
 #include <iomanip>
 #include <istream>
 #include <ostream>
@@ -31,8 +32,10 @@ namespace fdparticle
       prm.declare_entry("Particle file", "", Patterns::Anything(),
                         "CSV file of more particles, one per line: 'x, y[, z], radius, "
                         "density[, motion[, vx, vy[, vz][, angular velocity]]]' (motion as "
-                        "in Particles); '#' comments and a header line are skipped. A "
-                        "relative path starts in the directory fdparticle runs in.");
+                        "in Particles; the radius may be a shape as in Particles with spaces "
+                        "between its numbers, 'ellipse 0.2 0.1 30'); '#' comments and a "
+                        "header line are skipped. A relative path starts in the directory "
+                        "fdparticle runs in.");
       RandomPacking<dim>::declare_parameters(prm);
       prm.declare_entry("Angular velocity closure", "torque balance",
                         Patterns::Selection("torque balance|kinematic"),
@@ -46,8 +49,9 @@ namespace fdparticle
   {
     /// The shape field of an entry: a radius (a ball), 'ellipse a, b [, angle]' (2D; the
     /// a axis turned by angle degrees from x) or 'ellipsoid a, b, c [, axis x, y, z,
-    /// angle]' (3D; the body turned by angle degrees about the axis). Sets the shape and
-    /// the orientation of p.
+    /// angle]' (3D; the body turned by angle degrees about the axis); the numbers may be
+    /// separated by spaces instead of commas (a column of a particle file). Sets the shape
+    /// and the orientation of p.
     template <int dim>
     void read_shape(const std::string &field, const std::string &name, Particle<dim> &p)
     {
@@ -70,7 +74,10 @@ namespace fdparticle
                              " scene has no " + word + "; the shape is a radius or " + form +
                              "."));
       std::vector<double> values;
-      for (const std::string &v : split(text.substr(word.size()), ','))
+      std::string         numbers = text.substr(word.size());
+      std::replace(numbers.begin(), numbers.end(), ',', ' ');
+      std::istringstream in(numbers);
+      for (std::string v; in >> v;)
         values.push_back(to_double(v, name + " " + word));
       const unsigned int n_angle = (dim == 2 ? 1 : 4);
       AssertThrow(values.size() == dim || values.size() == dim + n_angle,

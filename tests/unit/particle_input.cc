@@ -73,11 +73,12 @@ namespace
   void test_file()
   {
     std::cout << dim << "D particle file" << std::endl;
-    // A comment, a header, a blank line, then free, fixed (padded with empty columns as a
-    // spreadsheet writes them) and prescribed particles.
+    // A comment, a header, a blank line, then a free ellipse or ellipsoid, fixed (padded
+    // with empty columns as a spreadsheet writes them) and prescribed balls.
     const std::string three = (dim == 2 ? "" : ", 0.6");
-    write("# three balls\nx, y" + std::string(dim == 3 ? ", z" : "") +
-          ", radius, density, motion\n\n0.3, 0.4" + three + ", 0.1, 2\n" + "0.7, 0.4" +
+    const std::string shape = (dim == 2 ? "ellipse 0.15 0.05 30" : "ellipsoid 0.15 0.05 0.07 0 0 1 30");
+    write("# three particles\nx, y" + std::string(dim == 3 ? ", z" : "") +
+          ", radius, density, motion\n\n0.3, 0.4" + three + ", " + shape + ", 2\n" + "0.7, 0.4" +
           three + ", 0.12, 3, fixed,,,\n" + "0.5, 1.1" + three + ", 0.08, 1.5, prescribed, 0.5, -1" +
           (dim == 2 ? ", 2" : ", 0.25, 1, 2, 3") + "\n");
     ParticleSet<dim> set;
@@ -91,6 +92,10 @@ namespace
     check(set.size() == 4, "the list's particle, then the file's three");
     check_close(set[0].bounding_radius(), 0.05, 0, "the list's particle comes first");
     check_close(set[1].position[1], 0.4, 0, "line 4: y");
+    check(set[1].shape->name() == (dim == 2 ? "ellipse" : "ellipsoid") &&
+            set[1].bounding_radius() == 0.15 &&
+            std::abs(Eigen::AngleAxisd(set[1].orientation).angle() - numbers::PI / 6) < 1e-14,
+          "line 4: the shape, its semi-axes and its turn by 30 degrees");
     check_close(set[2].bounding_radius(), 0.12, 0, "line 5: radius");
     check_close(set[2].density, 3.0, 0, "line 5: density");
     check(set[1].motion == ParticleMotion::free && set[2].motion == ParticleMotion::fixed &&
@@ -108,6 +113,8 @@ namespace
       {ok + "0.7, 0.4" + three + ", 0.1, 2, rolling\n", "line 2)': motion 'rolling'"},
       {ok + "0.7, 0.4" + three + ", 0.1, 2, prescribed\n", "line 2)': 'prescribed' needs"},
       {ok + "0.7, 0.4" + three + ", -0.1, 2\n", "line 2)': the radius must be positive"},
+      {ok + "0.7, 0.4" + three + (dim == 2 ? ", ellipse 0.1 -0.05, 2\n" : ", ellipsoid 0.1 0.05 0, 2\n"),
+       "line 2)': the semi-axes of an"},
       {"# nothing\n", "lists no particle"},
       {ok + "0.35, 0.4" + three + ", 0.1, 2\n", "Particles 0 and 1 overlap"}};
     // A 3D file in a 2D scene: its z column shifts the radius, density into motion's place.

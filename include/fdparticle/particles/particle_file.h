@@ -16,6 +16,8 @@ namespace fdparticle
    *
    *   x, y[, z], radius, density[, motion[, vx, vy[, vz][, angular velocity]]]
    *
+   * where the radius may be a shape with its numbers separated by spaces, as
+   * 'ellipse 0.2 0.1 30' or 'ellipsoid 0.2 0.1 0.1 0 0 1 45' (Particles/Particles),
    * with motion free (default), fixed or prescribed (then the velocity and optionally the
    * angular velocity follow, as in Particles/Particles). Lines starting with '#' and blank
    * lines are skipped, and so is a first line that starts with a name (a header such as
