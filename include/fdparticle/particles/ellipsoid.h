@@ -19,7 +19,6 @@ namespace fdparticle
 
     std::string name() const override { return dim == 2 ? "ellipse" : "ellipsoid"; }
     bool        is_isotropic() const override { return false; }
-    const Tensor<1, dim> &semi_axes() const { return a; }
 
     double bounding_radius() const override;
     Tensor<2, dim> semi_axes_tensor() const override
