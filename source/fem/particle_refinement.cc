@@ -139,7 +139,20 @@ namespace fdparticle
               changed = true;
             }
         }
-    return Utilities::MPI::logical_or(changed, triangulation.get_communicator());
+    if (!Utilities::MPI::logical_or(changed, triangulation.get_communicator()))
+      return false;
+    // A coarsening flag stays only where all siblings have one: what is left after the
+    // smoothing decides whether the mesh changes at all (an unchanged mesh keeps its DoFs
+    // and whatever the solvers built on them).
+    triangulation.prepare_coarsening_and_refinement();
+    bool flagged = false;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && (cell->refine_flag_set() || cell->coarsen_flag_set()))
+        {
+          flagged = true;
+          break;
+        }
+    return Utilities::MPI::logical_or(flagged, triangulation.get_communicator());
   }
 
   template <int dim>

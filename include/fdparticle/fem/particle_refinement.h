@@ -35,8 +35,9 @@ namespace fdparticle
       return enabled() && step % interval == 0;
     }
 
-    /// Flag cells for one pass of refinement/coarsening; true if any cell was flagged
-    /// on any rank. The caller executes it (with its solution transfer).
+    /// Flag cells for one pass of refinement/coarsening; true if any cell on any rank
+    /// keeps a flag after the triangulation's smoothing, i.e. if the mesh will change.
+    /// The caller executes it (with its solution transfer).
     bool mark(parallel::distributed::Triangulation<dim> &triangulation,
               const ParticleSet<dim> &particles, const unsigned int base_level) const;
 

@@ -80,7 +80,12 @@ namespace fdparticle
     /// Build from the system's current values. The system and the operator must outlive
     /// the preconditioner's use; A keeps being read (for the current values).
     void initialize(const NewtonSystem &system, const BorderedOperator &op);
-    bool initialized() const { return multiplier_matrix != nullptr; }
+    /// Whether it is built and still fits the system's DoFs (the program's velocity block
+    /// inverse is rebuilt with the mesh, and must then be initialized again).
+    bool initialized() const
+    {
+      return multiplier_matrix != nullptr && (!velocity_inverse || velocity_inverse->initialized());
+    }
     void clear();
 
     /// dst = P⁻¹ src, followed by the patch correction dst += R A_patch⁻¹ Rᵀ (src − J dst)

@@ -27,6 +27,10 @@ namespace fdparticle
     virtual void initialize(const NewtonSystem &                                   system,
                             const TrilinosWrappers::PreconditionAMG::AdditionalData &amg) = 0;
 
+    /// Whether the last initialize() still holds: false once the mesh or the DoFs changed
+    /// underneath it, when the block preconditioner must be rebuilt.
+    virtual bool initialized() const = 0;
+
     /// dst ≈ K⁻¹ src. Both hold the velocity block's owned DoFs in the block numbering.
     virtual void vmult(TrilinosWrappers::MPI::Vector &      dst,
                        const TrilinosWrappers::MPI::Vector &src) const = 0;
