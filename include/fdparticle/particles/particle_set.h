@@ -108,10 +108,7 @@ namespace fdparticle
     {
       geometry_center = X;
       geometry_orientation = q;
-      const Eigen::Matrix3d R = q.toRotationMatrix();
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          geometry_rotation[i][j] = R(i, j);
+      geometry_rotation = RigidBody<dim>::rotation_matrix(q);
     }
 
     double volume() const { return shape->volume(); }
@@ -120,11 +117,7 @@ namespace fdparticle
     {
       if (shape->is_isotropic())
         return shape->inertia();
-      const Eigen::Matrix3d R = geometry_orientation.toRotationMatrix();
-      Tensor<2, 3>          Q;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          Q[i][j] = R(i, j);
+      const Tensor<2, 3> Q = RigidBody<dim>::template rotation_matrix<3>(geometry_orientation);
       return Q * shape->inertia() * transpose(Q);
     }
     /// Whether d(Jω)/dt is J dω/dt with one number J: for a ball, and in 2D, where the
