@@ -83,11 +83,7 @@ namespace fdparticle
     std::vector<std::pair<std::string, std::vector<double>>>
     particle_point_data(const Particle<dim> &P)
     {
-      const Eigen::Matrix3d R3 = P.orientation.toRotationMatrix();
-      Tensor<2, dim>        Q;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          Q[i][j] = R3(i, j);
+      const Tensor<2, dim> Q = RigidBody<dim>::rotation_matrix(P.orientation);
       const Tensor<2, dim> shape = Q * P.shape->semi_axes_tensor() * transpose(Q);
       std::vector<double>  tensor;
       for (unsigned int i = 0; i < dim; ++i)

@@ -190,14 +190,13 @@ namespace fdparticle
         const Particle<dim> &A = particles[pair.i], &B = particles[pair.j];
         if (!A.shape->is_isotropic() || !B.shape->is_isotropic())
           {
-            // Not two balls: the true gap between the shapes (ContactGeometry).
-            if (ContactGeometry<dim>::pair(A, B, pair.offset, pair.gap).gap >= range)
+            // Not two balls: the true gap between the shapes (ContactGeometry), solved
+            // once here for the range test and the force.
+            const ContactGeometry<dim> contact = ContactGeometry<dim>::pair(A, B, pair.offset);
+            if (contact.gap >= range)
               continue;
             const auto geometry = [&](const Tensor<1, dim> &dXi, const Tensor<1, dim> &dXj) {
-              const Tensor<1, dim> offset = pair.offset + dXi - dXj;
-              return ContactGeometry<dim>::pair(A, B, offset,
-                                                offset.norm() - A.bounding_radius() -
-                                                  B.bounding_radius());
+              return ContactGeometry<dim>::pair(A, B, pair.offset + dXi - dXj);
             };
             const std::optional<SpringDashpotLaw> spring =
               contact_model == Model::repulsion ?
@@ -205,7 +204,7 @@ namespace fdparticle
                 std::optional<SpringDashpotLaw>(spring_dashpot(pair.i, pair.j, particles));
             const RepulsionLaw repulsion = law(pair.i, pair.j);
             NormalContact<dim>::add_shaped(
-              particles, pair.i, pair.j, geometry,
+              particles, pair.i, pair.j, contact, geometry,
               [&](const double gap, const double v_n) {
                 return spring ? spring->value(gap, v_n) : repulsion.value(gap);
               },
@@ -252,7 +251,7 @@ namespace fdparticle
     for (const auto &pair : search->pairs(x, r, diameter))
       {
         const double gap =
-          ContactGeometry<dim>::pair(particles[pair.i], particles[pair.j], pair.offset, pair.gap).gap;
+          ContactGeometry<dim>::pair(particles[pair.i], particles[pair.j], pair.offset).gap;
         min_gap = std::min(min_gap, gap);
         if (gap < range)
           ++n_contacts;

@@ -10,14 +10,14 @@ namespace fdparticle
 {
   template <int dim>
   ContactGeometry<dim> ContactGeometry<dim>::pair(const Particle<dim> &i, const Particle<dim> &j,
-                                                  const Tensor<1, dim> &offset,
-                                                  const double          ball_gap)
+                                                  const Tensor<1, dim> &offset)
   {
     ContactGeometry<dim> c;
-    Tensor<1, dim>       n = offset / offset.norm();
+    const double         distance = offset.norm();
+    Tensor<1, dim>       n = offset / distance;
     if (i.shape->is_isotropic() && j.shape->is_isotropic())
       {
-        c.gap = ball_gap;
+        c.gap = distance - i.bounding_radius() - j.bounding_radius();
         c.normal = n;
         c.arm_i = -i.bounding_radius() * n;
         c.arm_j = j.bounding_radius() * n;

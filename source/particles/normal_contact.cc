@@ -36,6 +36,7 @@ namespace fdparticle
   template <int dim>
   void NormalContact<dim>::add_shaped(
     ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
+    const ContactGeometry<dim> &contact,
     const std::function<ContactGeometry<dim>(const Tensor<1, dim> &, const Tensor<1, dim> &)>
       &                                                           geometry,
     const std::function<NormalLawValue(double gap, double v_n)> &law, const double range,
@@ -46,9 +47,10 @@ namespace fdparticle
     const std::array<unsigned int, 2> k{{i, j}};
     const bool torques = particles.closure() == AngularVelocityClosure::torque_balance;
     constexpr unsigned int n_rows = RB::n_unknowns;
-    // Force and torque on each particle with the velocities moved by dV.
-    const auto evaluate = [&](const std::array<Tensor<1, dim>, 2> &dV) {
-      const ContactGeometry<dim> at = geometry(dV[0] / c[0], dV[1] / c[0]);
+    // Force and torque on each particle with the velocities moved by dV, at the contact
+    // geometry of the positions they give.
+    const auto evaluate = [&](const ContactGeometry<dim> &           at,
+                              const std::array<Tensor<1, dim>, 2> &dV) {
       Tensor<1, dim> relative = particles[i].velocity + dV[0];
       if (n_balls == 2)
         relative -= particles[j].velocity + dV[1];
@@ -65,7 +67,7 @@ namespace fdparticle
         }
       return rows;
     };
-    const auto at_rest = evaluate({});
+    const auto at_rest = evaluate(contact, {});
     for (unsigned int s = 0; s < n_balls; ++s)
       {
         Particle<dim> &P = particles[k[s]];
@@ -88,7 +90,8 @@ namespace fdparticle
             std::array<Tensor<1, dim>, 2> plus{}, minus{};
             plus[t][b] = step;
             minus[t][b] = -step;
-            const auto up = evaluate(plus), down = evaluate(minus);
+            const auto up = evaluate(geometry(plus[0] / c[0], plus[1] / c[0]), plus);
+            const auto down = evaluate(geometry(minus[0] / c[0], minus[1] / c[0]), minus);
             for (unsigned int s = 0; s < n_balls; ++s)
               if (const unsigned int row = particles[k[s]].first_unknown;
                   row != numbers::invalid_unsigned_int)

@@ -313,7 +313,7 @@ namespace fdparticle
       }
     // Bounding balls that overlap, then the shapes themselves.
     for (const auto &pair : PairSearch<dim>(domain).pairs(x, r, 0.0))
-      AssertThrow(ContactGeometry<dim>::pair(now[pair.i], now[pair.j], pair.offset, pair.gap).gap >= 0,
+      AssertThrow(ContactGeometry<dim>::pair(now[pair.i], now[pair.j], pair.offset).gap >= 0,
                   ExcMessage("Particles " + std::to_string(pair.i) + " and " +
                              std::to_string(pair.j) + " overlap" + when +
                              (time == 0.0 ? "." : " (see subsection Collisions).")));

@@ -109,6 +109,21 @@ namespace fdparticle
     return v;
   }
 
+  template <int dim>
+  template <int n>
+  Tensor<2, n> RigidBody<dim>::rotation_matrix(const Eigen::Quaterniond &q)
+  {
+    const Eigen::Matrix3d R = q.toRotationMatrix();
+    Tensor<2, n>          Q;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        Q[i][j] = R(i, j);
+    return Q;
+  }
+
   template struct RigidBody<2>;
   template struct RigidBody<3>;
+  template Tensor<2, 2> RigidBody<2>::rotation_matrix<2>(const Eigen::Quaterniond &);
+  template Tensor<2, 3> RigidBody<2>::rotation_matrix<3>(const Eigen::Quaterniond &);
+  template Tensor<2, 3> RigidBody<3>::rotation_matrix<3>(const Eigen::Quaterniond &);
 } // namespace fdparticle

@@ -147,12 +147,14 @@ namespace fdparticle
             if (!P.shape->is_isotropic())
               {
                 // Not a ball: the gap from its point nearest the wall (ContactGeometry).
-                if (ContactGeometry<dim>::wall(P, wall.normal, wall.gap).gap >= rho)
+                const ContactGeometry<dim> contact =
+                  ContactGeometry<dim>::wall(P, wall.normal, wall.gap);
+                if (contact.gap >= rho)
                   continue;
                 const std::optional<SpringDashpotLaw> spring_k =
                   spring_dashpot ? std::optional<SpringDashpotLaw>(spring(k)) : std::nullopt;
                 NormalContact<dim>::add_shaped(
-                  particles, k, numbers::invalid_unsigned_int,
+                  particles, k, numbers::invalid_unsigned_int, contact,
                   [&](const Tensor<1, dim> &dX, const Tensor<1, dim> &) {
                     return ContactGeometry<dim>::wall(P, wall.normal, wall.gap + wall.normal * dX);
                   },

@@ -583,8 +583,7 @@ namespace
         direction /= direction.norm();
         const double    reach = (trial < 10 ? 0.45 + 0.05 * uniform(random) : 0.1);
         const Particle<dim> A = make(Point<dim>() + reach * direction, a), B = make(Point<dim>(), b);
-        const double R = A.bounding_radius() + B.bounding_radius();
-        const auto   c = ContactGeometry<dim>::pair(A, B, reach * direction, reach - R);
+        const auto          c = ContactGeometry<dim>::pair(A, B, reach * direction);
         const auto   xa = samples(A, a), xb = samples(B, b);
         double       sampled = 1e300;
         for (const auto &p : xa)

@@ -3,9 +3,9 @@
 //
 // Every expected value is computed here independently of the library: cross products by
 // the Levi-Civita symbol, gradients by central differences of that cross product, the
-// rotation of a vector by Rodrigues' formula, volumes and moments of inertia by the
-// textbook formulas; whether an ellipsoid meets a box by sampling the box. The program
-// prints each check and returns 1 if any fails.
+// rotation of a vector by Rodrigues' formula and by the quaternion product q v q*, volumes
+// and moments of inertia by the textbook formulas; whether an ellipsoid meets a box by
+// sampling the box. The program prints each check and returns 1 if any fails.
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/tensor.h>
@@ -16,6 +16,7 @@
 
 #include "unit_check.h"
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -301,6 +302,65 @@ namespace
                     "2D: angle of e_x == 0.3 + omega_z dt");
       }
   }
+
+  /// q v q* by the Hamilton product of the quaternions (w, x, y, z), v = (0, v).
+  std::array<double, 3> hamilton_rotate(const Eigen::Quaterniond &q, const std::array<double, 3> &v)
+  {
+    using Q4 = std::array<double, 4>;
+    const auto product = [](const Q4 &a, const Q4 &b) {
+      return Q4{{a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                 a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                 a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                 a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]}};
+    };
+    const Q4 p{{q.w(), q.x(), q.y(), q.z()}}, conjugate{{q.w(), -q.x(), -q.y(), -q.z()}};
+    const Q4 r = product(product(p, Q4{{0, v[0], v[1], v[2]}}), conjugate);
+    return {{r[1], r[2], r[3]}};
+  }
+
+  /// RigidBody::rotation_matrix<n>(q) is orthogonal with determinant 1 and maps v to q v q*.
+  template <int dim, int n>
+  void check_rotation_matrix(const Eigen::Quaterniond &q, const std::string &what)
+  {
+    const Tensor<2, n> Q = RigidBody<dim>::template rotation_matrix<n>(q);
+    check_close(transpose(Q) * Q, Tensor<2, n>(unit_symmetric_tensor<n>()), 1e-14,
+                what + ": Q^T Q = I");
+    check_close(determinant(Q), 1.0, 1e-14, what + ": det Q = 1");
+    double err = 0;
+    for (const std::array<double, 3> &v :
+         {std::array<double, 3>{{1, 0, 0}}, std::array<double, 3>{{0, 1, 0}},
+          std::array<double, 3>{{0.3, -0.2, 0.7}}})
+      {
+        Tensor<1, n> vn;
+        for (unsigned int d = 0; d < n; ++d)
+          vn[d] = v[d];
+        // The n = 2 block turns the in-plane part of v: v with its z dropped.
+        const std::array<double, 3> expected =
+          hamilton_rotate(q, n == 2 ? std::array<double, 3>{{v[0], v[1], 0}} : v);
+        const Tensor<1, n> turned = Q * vn;
+        for (unsigned int d = 0; d < n; ++d)
+          err = std::max(err, std::abs(turned[d] - expected[d]));
+      }
+    check(err < 1e-14, what + ": Q v = q v q* (Hamilton product)", "error " + sci(err));
+  }
+
+  template <int dim>
+  void test_rotation_matrix()
+  {
+    std::cout << "RigidBody<" << dim << ">: rotation_matrix" << std::endl;
+    const std::string D = std::to_string(dim) + "D: ";
+    // Turns of several angles, also past pi, about z (2D) or a skew axis (3D).
+    const Eigen::Vector3d axis =
+      dim == 2 ? Eigen::Vector3d(0, 0, 1) : Eigen::Vector3d(1, -2, 3).normalized();
+    for (const double angle : {0.0, 0.4, 2.5, 4.0})
+      {
+        const Eigen::Quaterniond q(Eigen::AngleAxisd(angle, axis));
+        const std::string        what = D + "angle " + std::to_string(angle);
+        check_rotation_matrix<dim, dim>(q, what);
+        if (dim == 2)
+          check_rotation_matrix<dim, 3>(q, what + " (3 x 3)");
+      }
+  }
 } // namespace
 
 namespace
@@ -466,6 +526,8 @@ int main()
       test_algebra<3>();
       test_rotate<2>();
       test_rotate<3>();
+      test_rotation_matrix<2>();
+      test_rotation_matrix<3>();
       test_ellipsoid<2>();
       test_ellipsoid<3>();
     }

@@ -26,10 +26,10 @@ namespace fdparticle
     /// as the centres move.
     bool along_centres = true;
 
-    /// Particles i and j at offset X_i − X_j (nearest image) and ball_gap, the gap
-    /// between their bounding balls.
+    /// Particles i and j at offset X_i − X_j (nearest image). Two balls: the gap
+    /// |X_i − X_j| − R_i − R_j, as PairSearch computes it.
     static ContactGeometry pair(const Particle<dim> &i, const Particle<dim> &j,
-                                const Tensor<1, dim> &offset, const double ball_gap);
+                                const Tensor<1, dim> &offset);
     /// Particle i and a wall of inward normal n at ball_gap from its bounding ball.
     static ContactGeometry wall(const Particle<dim> &i, const Tensor<1, dim> &normal,
                                 const double ball_gap);

@@ -55,12 +55,14 @@ namespace fdparticle
      * A contact of particles i and j (j = numbers::invalid_unsigned_int: a wall) that are
      * not both balls: the force f(g, v_n) n on i at the contact geometry of the end-of-step
      * positions, −F on j, and with the torque balance the torques arm × (±F) about each
-     * centre. geometry(δX_i, δX_j) gives it for the positions moved by δX; D by central
-     * differences in the velocities (X^{n+1} = (V − c1 X^n − c2 X^{n−1})/c0), step
-     * 10⁻⁶ c0 range.
+     * centre. contact is the geometry at the end-of-step positions (the caller's, which
+     * told it the pair is in range), geometry(δX_i, δX_j) gives it for the positions moved
+     * by δX; D by central differences in the velocities (X^{n+1} = (V − c1 X^n −
+     * c2 X^{n−1})/c0), step 10⁻⁶ c0 range.
      */
     static void add_shaped(
       ParticleSet<dim> &particles, const unsigned int i, const unsigned int j,
+      const ContactGeometry<dim> &contact,
       const std::function<ContactGeometry<dim>(const Tensor<1, dim> &, const Tensor<1, dim> &)>
         &                                                           geometry,
       const std::function<NormalLawValue(double gap, double v_n)> &law, const double range,

@@ -108,10 +108,7 @@ namespace fdparticle
     {
       geometry_center = X;
       geometry_orientation = q;
-      const Eigen::Matrix3d R = q.toRotationMatrix();
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          geometry_rotation[i][j] = R(i, j);
+      geometry_rotation = RigidBody<dim>::rotation_matrix(q);
     }
 
     double volume() const { return shape->volume(); }
@@ -120,12 +117,48 @@ namespace fdparticle
     {
       if (shape->is_isotropic())
         return shape->inertia();
-      const Eigen::Matrix3d R = geometry_orientation.toRotationMatrix();
-      Tensor<2, 3>          Q;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          Q[i][j] = R(i, j);
+      const Tensor<2, 3> Q = RigidBody<dim>::template rotation_matrix<3>(geometry_orientation);
       return Q * shape->inertia() * transpose(Q);
+    }
+    /// Whether d(Jω)/dt is J dω/dt with one number J: for a ball, and in 2D, where the
+    /// particle turns about z only and J_zz stays.
+    bool constant_inertia() const { return dim == 2 || shape->is_isotropic(); }
+    /// ρ d(Jω)/dt at the end of the step by the BDF formula with coefficients c, at the
+    /// current iterate of ω (doc/method.md §0 (F5), §13): ρ J_zz dω/dt with constant
+    /// inertia, else ρ (J dω/dt + ω × Jω) with J = Q J_body Qᵀ. What the torque balance
+    /// takes with ρ = ρ_k − ρ_f and the reported torque with ρ = ρ_f (§9).
+    Tensor<1, 3> angular_momentum_rate(const std::array<double, 3> &c, const double rho) const
+    {
+      const Tensor<2, 3> J = inertia();
+      const Tensor<1, 3> dwdt = angular_acceleration(c);
+      if (constant_inertia())
+        return rho * J[2][2] * dwdt;
+      return rho * (J * dwdt + cross_product_3d(omega, J * omega));
+    }
+    /// The derivative of angular_momentum_rate() by ω: ρ J_zz c0 on the diagonal with
+    /// constant inertia, else ρ (c0 J + [ω]× J − [Jω]×), column m the derivative by ω_m.
+    Tensor<2, 3> angular_momentum_rate_derivative(const std::array<double, 3> &c,
+                                                  const double rho) const
+    {
+      const Tensor<2, 3> J = inertia();
+      Tensor<2, 3>       D;
+      if (constant_inertia())
+        {
+          for (unsigned int i = 0; i < 3; ++i)
+            D[i][i] = rho * J[2][2] * c[0];
+          return D;
+        }
+      const Tensor<1, 3> Jw = J * omega;
+      for (unsigned int m = 0; m < 3; ++m)
+        {
+          Tensor<1, 3> em;
+          em[m] = 1;
+          const Tensor<1, 3> column =
+            c[0] * (J * em) + cross_product_3d(omega, J * em) - cross_product_3d(Jw, em);
+          for (unsigned int i = 0; i < 3; ++i)
+            D[i][m] = rho * column[i];
+        }
+      return D;
     }
     /// The radius of the ball about the centre that holds the particle: what bins, walls
     /// and the contact models see (Shape::bounding_radius).

@@ -44,6 +44,12 @@ namespace fdparticle
     /// The rotation vector of a unit quaternion: angle (in [0, π]) times axis.
     static Tensor<1, 3> rotation_vector(const Eigen::Quaterniond &q);
 
+    /// The rotation matrix (body to world) of a unit quaternion q, R v = q v q*: its
+    /// leading n × n block, n = dim for positions and shapes (in 2D q turns about z and the
+    /// block is the turn in the plane), n = 3 for the inertia tensor.
+    template <int n = dim>
+    static Tensor<2, n> rotation_matrix(const Eigen::Quaterniond &q);
+
     /// Advance a unit quaternion by the rotation ω Δt (exact for constant ω in the step).
     static Eigen::Quaterniond rotate(const Eigen::Quaterniond &q,
                                      const Tensor<1, 3> &      omega,

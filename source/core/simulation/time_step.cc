@@ -167,12 +167,7 @@ namespace fdparticle
         Particle<dim> &P = particles[k];
         P.force = fluid.density * P.volume() * (P.acceleration(c) - fluid.gravity) -
                   integrals[k].lambda_force;
-        const Tensor<2, 3> J = P.inertia();
-        const Tensor<1, 3> dwdt = P.angular_acceleration(c);
-        P.torque = (P.shape->is_isotropic() || dim == 2 ?
-                      fluid.density * J[2][2] * dwdt :
-                      fluid.density * (J * dwdt + cross_product_3d(P.omega, J * P.omega))) -
-                   integrals[k].lambda_torque;
+        P.torque = P.angular_momentum_rate(c, fluid.density) - integrals[k].lambda_torque;
         if (dim == 2)
           P.torque[0] = P.torque[1] = 0;
       }

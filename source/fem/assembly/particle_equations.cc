@@ -17,7 +17,6 @@ namespace fdparticle
         const unsigned int   f = P.first_unknown;
         const double         drho = P.density - fluid.density;
         const Tensor<1, dim> dVdt = P.acceleration(c);
-        const Tensor<1, 3>   dwdt = P.angular_acceleration(c);
         for (unsigned int d = 0; d < dim; ++d)
           {
             system.r_p[f + d] =
@@ -25,37 +24,25 @@ namespace fdparticle
             if (with_matrix)
               system.D.coeffRef(f + d, f + d) = drho * P.volume() * c[0];
           }
-        // (F5) with J = Q J_body Qᵀ: d(Jω)/dt = J dω/dt + ω × Jω, whose last term vanishes
-        // for an isotropic J (a ball) and in 2D.
-        const Tensor<2, 3> J = P.inertia();
-        const bool         isotropic = P.shape->is_isotropic() || dim == 2;
-        const Tensor<1, 3> Jw = J * P.omega;
-        const Tensor<1, 3> angular_rate =
-          isotropic ? Tensor<1, 3>() : J * dwdt + cross_product_3d(P.omega, Jw);
+        // (F5): (ρ_k − ρ_f) d(Jω)/dt + <λ, θ × r> = 0 (Particle::angular_momentum_rate).
+        const bool torque_balance = particles.closure() == AngularVelocityClosure::torque_balance;
+        const Tensor<1, 3> rate = torque_balance ? P.angular_momentum_rate(c, drho) : Tensor<1, 3>();
+        const Tensor<2, 3> rate_derivative = (torque_balance && with_matrix) ?
+                                               P.angular_momentum_rate_derivative(c, drho) :
+                                               Tensor<2, 3>();
         for (unsigned int j = 0; j < RB::n_rotations; ++j)
           {
             const Tensor<1, 3> e = RB::rotation_axis(j);
             const unsigned int cj = RB::rotation_component(j);
-            if (particles.closure() == AngularVelocityClosure::torque_balance && isotropic)
+            if (torque_balance)
               {
-                system.r_p[f + dim + j] =
-                  drho * J[cj][cj] * (dwdt * e) + integrals[k].lambda_torque * e;
-                if (with_matrix)
-                  system.D.coeffRef(f + dim + j, f + dim + j) = drho * J[cj][cj] * c[0];
-              }
-            else if (particles.closure() == AngularVelocityClosure::torque_balance)
-              {
-                system.r_p[f + dim + j] = drho * angular_rate[cj] + integrals[k].lambda_torque * e;
-                // ∂/∂ω of (c0 J ω + ω × Jω) = c0 J + [ω]× J − [Jω]×.
+                system.r_p[f + dim + j] = rate[cj] + integrals[k].lambda_torque * e;
+                // With constant inertia the rate couples ω_j to itself only.
                 if (with_matrix)
                   for (unsigned int m = 0; m < RB::n_rotations; ++m)
-                    {
-                      const Tensor<1, 3> em = RB::rotation_axis(m);
-                      const Tensor<1, 3> column = c[0] * (J * em) +
-                                                  cross_product_3d(P.omega, J * em) -
-                                                  cross_product_3d(Jw, em);
-                      system.D.coeffRef(f + dim + j, f + dim + m) = drho * column[cj];
-                    }
+                    if (const unsigned int cm = RB::rotation_component(m);
+                        m == j || !P.constant_inertia())
+                      system.D.coeffRef(f + dim + j, f + dim + m) = rate_derivative[cj][cm];
               }
             else
               {
