@@ -68,7 +68,8 @@ namespace fdparticle
 
     void initialize(const NewtonSystem &                                   system,
                     const TrilinosWrappers::PreconditionAMG::AdditionalData &amg) override;
-    /// False from reinit() on, until initialize() has built the V-cycle on the new levels.
+    /// Whether the V-cycle is built on the current levels (not between reinit() and the
+    /// next initialize()).
     bool initialized() const override { return levels_current && preconditioner != nullptr; }
     void vmult(TrilinosWrappers::MPI::Vector &      dst,
                const TrilinosWrappers::MPI::Vector &src) const override;
