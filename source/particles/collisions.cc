@@ -185,6 +185,16 @@ namespace fdparticle
     std::vector<Point<dim>> x;
     std::vector<double>     r;
     centres_and_radii(particles, &c, x, r);
+    // Friction on the spring-dashpot contact of i and j (shift: the periodic image).
+    const auto add_friction = [&](const unsigned int i, const unsigned int j,
+                                  const Tensor<1, dim> &shift, const SpringDashpotLaw &spring) {
+      ContactFriction<dim>(friction, spring)
+        .add_pair(particles, i, j, shift,
+                  [&](const double gap, const double normal_velocity) {
+                    return spring.value(gap, normal_velocity).force;
+                  },
+                  c, r_p, D);
+    };
     for (const auto &pair : search->pairs(x, r, range))
       {
         const Particle<dim> &A = particles[pair.i], &B = particles[pair.j];
@@ -209,6 +219,8 @@ namespace fdparticle
                 return spring ? spring->value(gap, v_n) : repulsion.value(gap);
               },
               range, c, r_p, D);
+            if (spring && friction > 0)
+              add_friction(pair.i, pair.j, pair.offset - (x[pair.i] - x[pair.j]), *spring);
             continue;
           }
         const auto contact =
@@ -221,12 +233,7 @@ namespace fdparticle
         const SpringDashpotLaw spring = spring_dashpot(pair.i, pair.j, particles);
         contact.add(particles, spring.value(pair.gap, contact.normal_velocity()), c, r_p, D);
         if (friction > 0)
-          ContactFriction<dim>(friction, spring)
-            .add_pair(particles, pair.i, pair.j, pair.offset - (x[pair.i] - x[pair.j]),
-                      [&](const double gap, const double normal_velocity) {
-                        return spring.value(gap, normal_velocity).force;
-                      },
-                      c, r_p, D);
+          add_friction(pair.i, pair.j, pair.offset - (x[pair.i] - x[pair.j]), spring);
       }
   }
 
@@ -258,13 +265,6 @@ namespace fdparticle
       }
     statistics.set("contacts", n_contacts);
     statistics.set("min_gap", min_gap);
-  }
-
-  template <int dim>
-  void Collisions<dim>::check_scene(const ParticleSet<dim> &particles) const
-  {
-    if (enabled() && friction > 0)
-      this->require_balls(particles, "Collisions/Friction coefficient", "friction", "set it to 0");
   }
 
   template class Collisions<2>;

@@ -1,4 +1,5 @@
 #include <fdparticle/particles/contact_friction.h>
+#include <fdparticle/particles/contact_geometry.h>
 #include <fdparticle/particles/rigid_body.h>
 
 #include <array>
@@ -37,30 +38,34 @@ namespace fdparticle
     Particle<dim> A = particles[i];
     set_motion(A, u, 0);
     const Point<dim> X_A = A.position_after_step(c);
-    Tensor<1, dim>   n, sliding;
-    double           gap;
+    // The partner's velocity at its centre and at the contact point, and the geometry of
+    // the contact at the end-of-step positions.
+    Tensor<1, dim>       partner_velocity, partner_point_velocity;
+    ContactGeometry<dim> contact;
+    Tensor<1, dim>       arm_j;
     if (is_pair)
       {
         Particle<dim> B = particles[partner.j];
         set_motion(B, u, n_unknowns);
-        const Tensor<1, dim> offset   = X_A - B.position_after_step(c) + partner.shift;
-        const double         distance = offset.norm();
-        n   = offset / distance;
-        gap = distance - A.bounding_radius() - B.bounding_radius();
-        // The contact point is the middle of the gap: (R_j + g/2) n from X_j.
-        sliding = -B.velocity - RigidBody<dim>::cross(B.omega, (B.bounding_radius() + gap / 2) * n);
+        contact = ContactGeometry<dim>::pair(A, B, X_A - B.position_after_step(c) + partner.shift);
+        arm_j   = contact.arm_j + (contact.gap / 2) * contact.normal;
+        partner_velocity       = B.velocity;
+        partner_point_velocity = B.velocity + RigidBody<dim>::cross(B.omega, arm_j);
       }
     else
       {
-        n       = partner.normal;
-        gap     = n * X_A - partner.plane - A.bounding_radius();
-        sliding = -partner.wall_velocity;
+        contact = ContactGeometry<dim>::wall(A, partner.normal,
+                                             partner.normal * X_A - partner.plane -
+                                               A.bounding_radius());
+        partner_velocity = partner_point_velocity = partner.wall_velocity;
       }
-    // The contact point is the middle of the gap: −(R_i + g/2) n from X_i. One point for
-    // both balls, so a pair's angular momentum is conserved.
-    const Tensor<1, dim> arm_i = -(A.bounding_radius() + gap / 2) * n;
-    const double F_n = std::max(normal_force(gap, (A.velocity + sliding) * n), 0.0);
-    sliding += A.velocity + RigidBody<dim>::cross(A.omega, arm_i);
+    // The contact point is the middle of the gap, between the two surfaces' nearest
+    // points: one point for both partners, so a pair's angular momentum is conserved.
+    const Tensor<1, dim> &n     = contact.normal;
+    const Tensor<1, dim>  arm_i = contact.arm_i - (contact.gap / 2) * n;
+    const double F_n = std::max(normal_force(contact.gap, (A.velocity - partner_velocity) * n), 0.0);
+    const Tensor<1, dim> sliding =
+      A.velocity + RigidBody<dim>::cross(A.omega, arm_i) - partner_point_velocity;
     const Tensor<1, dim> v_t = sliding - (sliding * n) * n;
     const Tensor<1, dim> F = -coefficient * F_n / std::sqrt(v_t.norm_square() +
                                                             slip_velocity * slip_velocity) * v_t;
@@ -72,8 +77,7 @@ namespace fdparticle
       result[dim + r] = T_i[RigidBody<dim>::rotation_component(r)];
     if (is_pair)
       {
-        const Tensor<1, 3> T_j =
-          RigidBody<dim>::moment((particles[partner.j].bounding_radius() + gap / 2) * n, -F);
+        const Tensor<1, 3> T_j = RigidBody<dim>::moment(arm_j, -F);
         for (unsigned int d = 0; d < dim; ++d)
           result[n_unknowns + d] = -F[d];
         for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)

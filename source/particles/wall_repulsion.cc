@@ -41,7 +41,7 @@ namespace fdparticle
                         "own damping comes on top. Resolve the contact duration printed at the "
                         "start with about 10 time steps to get it.");
       prm.declare_entry("Friction coefficient", "0", Patterns::Double(0),
-                        "spring-dashpot: Coulomb friction coefficient between a ball and a wall "
+                        "spring-dashpot: Coulomb friction coefficient between a particle and a wall "
                         "(tangential force at most this times the normal force, against sliding, "
                         "with a torque): a ball thrown along a wall starts rolling. 0: "
                         "frictionless. Needs Particles/Angular velocity closure = torque balance.");
@@ -136,6 +136,16 @@ namespace fdparticle
   {
     if (!on)
       return;
+    // Friction on the spring-dashpot contact of particle k with a wall.
+    const auto add_friction = [&](const unsigned int k, const typename Box<dim>::WallGap &wall,
+                                  const SpringDashpotLaw &spring_k) {
+      ContactFriction<dim>(friction, spring_k)
+        .add_wall(particles, k, wall,
+                  [&](const double gap, const double normal_velocity) {
+                    return spring_k.value(gap, normal_velocity).force;
+                  },
+                  c, r_p, D);
+    };
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         const Particle<dim> &P = particles[k];
@@ -162,6 +172,8 @@ namespace fdparticle
                     return spring_k ? spring_k->value(gap, v_n) : law.value(gap);
                   },
                   rho, c, r_p, D);
+                if (spring_k && friction > 0)
+                  add_friction(k, wall, *spring_k);
                 continue;
               }
             const auto contact = NormalContact<dim>::wall(particles, k, wall.normal, wall.gap);
@@ -173,21 +185,9 @@ namespace fdparticle
             const SpringDashpotLaw spring_k = spring(k);
             contact.add(particles, spring_k.value(wall.gap, contact.normal_velocity()), c, r_p, D);
             if (friction > 0)
-              ContactFriction<dim>(friction, spring_k)
-                .add_wall(particles, k, wall,
-                          [&](const double gap, const double normal_velocity) {
-                            return spring_k.value(gap, normal_velocity).force;
-                          },
-                          c, r_p, D);
+              add_friction(k, wall, spring_k);
           }
       }
-  }
-
-  template <int dim>
-  void WallRepulsion<dim>::check_scene(const ParticleSet<dim> &particles) const
-  {
-    if (enabled() && friction > 0)
-      this->require_balls(particles, "Wall repulsion/Friction coefficient", "friction", "set it to 0");
   }
 
   template class WallRepulsion<2>;

@@ -29,6 +29,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <utility>
 
 using namespace dealii;
 using namespace fdparticle;
@@ -44,6 +45,7 @@ namespace
 
   /// The subsection Collisions of each test unless it gives its own.
   const std::string repulsion = "  set Model = repulsion\n  set Range = 0.05\n";
+  const std::string none_model = "  set Model = none\n";
 
   template <int dim>
   void parse(ParameterHandler &prm, const std::string &periodic, const std::string &particles,
@@ -116,10 +118,27 @@ namespace
       }
   }
 
+  /// The wall subsection of a test near the floor: the repulsion's range, or the
+  /// spring-dashpot with friction.
+  const std::string wall_repulsion = "  set Range = 0.05\n";
+  const std::string wall_friction  = "  set Range = 0.05\n  set Model = spring-dashpot\n"
+                                    "  set Friction coefficient = 0.3\n";
+
+  /// The residual of the particle rows (contacts, lubrication, walls if near_wall), the
+  /// particle unknowns (V, ω) it was evaluated at, and the height of particle 0's
+  /// end-of-step centre above the floor and of its lowest point below that centre.
+  struct ForceRows
+  {
+    Eigen::VectorXd r, y;
+    double          height = 0, depth = 0;
+  };
+
+  /// ForceRows of the scene, after checking the rows and their derivative D.
   template <int dim>
-  void test_force(const std::string &periodic, const std::string &particles, const bool in_range,
-                  const std::string &model = repulsion, const std::string &lubrication_prm = "",
-                  const bool near_wall = false)
+  ForceRows test_force(const std::string &periodic, const std::string &particles,
+                             const bool in_range, const std::string &model = repulsion,
+                             const std::string &lubrication_prm = "", const bool near_wall = false,
+                             const std::string &wall_prm = wall_repulsion)
   {
     std::cout << dim << "D contact force, periodic '" << periodic << "', particles " << particles
               << "\n  Collisions: " << model << "  Lubrication: " << lubrication_prm << std::endl;
@@ -130,7 +149,7 @@ namespace
     Collisions<dim>   collisions;
     Lubrication<dim>  lubrication;
     parse(prm, periodic, particles, domain, fluid, set, collisions, model, lubrication_prm,
-          near_wall ? "  set Range = 0.05\n" : "");
+          near_wall ? wall_prm : "");
     lubrication.parse_parameters(prm);
     lubrication.initialize(domain, fluid, set, 0.01);
     WallRepulsion<dim> walls;
@@ -169,18 +188,44 @@ namespace
       {
         check(r0.norm() == 0 && D.norm() == 0 && F0.norm() == 0,
               "no force and no derivative out of range");
-        return;
+        return {r0, y0, 0, 0};
       }
     check(F0.norm() > 0, "a force in range");
     if (!near_wall)
       check((F0 + set[1].contact_force).norm() <= 1e-14 * F0.norm(), "equal and opposite");
-    // A particle that is not a ball is also turned by a contact off its centre line.
-    if (!set[0].shape->is_isotropic() && set[0].first_unknown != numbers::invalid_unsigned_int)
+    // A particle that is not round is also turned by a contact off its centre line.
+    Tensor<1, dim> e_x, e_y;
+    e_x[0] = e_y[1] = 1;
+    const bool round = std::abs(set[0].extent(e_x) - set[0].extent(e_y)) < 1e-12;
+    if (!round && set[0].first_unknown != numbers::invalid_unsigned_int)
       {
         double torque = 0;
         for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)
           torque += std::abs(r0[set[0].first_unknown + dim + r]);
-        check(torque > 1e-6 * F0.norm(), "the contact turns the particle that is not a ball");
+        check(torque > 1e-6 * F0.norm(), "the contact turns the particle that is not round");
+      }
+    if (set.closure() == AngularVelocityClosure::torque_balance)
+      {
+        // The contact forces (friction too) neither make nor take angular momentum: about
+        // the origin, the torques and the moments of the forces at the end-of-step centres
+        // cancel (periodic pairs aside, whose centres are a period apart).
+        Tensor<1, 3> angular;
+        double       scale = 0;
+        for (unsigned int k = 0; k < set.size(); ++k)
+          if (const unsigned int u = set[k].first_unknown; u != numbers::invalid_unsigned_int)
+            {
+              Tensor<1, dim> F;
+              Tensor<1, 3>   T;
+              for (unsigned int d = 0; d < dim; ++d)
+                F[d] = -r0[u + d];
+              for (unsigned int r = 0; r < RigidBody<dim>::n_rotations; ++r)
+                T[RigidBody<dim>::rotation_component(r)] = -r0[u + dim + r];
+              angular += T + RigidBody<dim>::moment(set[k].position_after_step(c), F);
+              scale += F.norm() * (set[k].position_after_step(c).norm() + set[k].bounding_radius());
+            }
+        if (periodic.empty() && !near_wall && set.n_unknowns() == 2 * RigidBody<dim>::n_unknowns)
+          check(angular.norm() <= 1e-12 * scale, "the contact keeps the pair's angular momentum",
+                "torque sum " + std::to_string(angular.norm()) + " of " + std::to_string(scale));
       }
     Eigen::MatrixXd difference(m, m);
     for (unsigned int j = 0; j < m; ++j)
@@ -194,6 +239,61 @@ namespace
           "D is the derivative of the residual in the velocities (central differences)",
           "largest difference " + std::to_string((difference - D).cwiseAbs().maxCoeff()) +
             " of " + std::to_string(D.cwiseAbs().maxCoeff()));
+    set.set_unknowns(y0);
+    Tensor<1, dim> up;
+    up[1] = 1;
+    return {r0, y0, set[0].position_after_step(c)[1], set[0].extent(-up)};
+  }
+
+  /**
+   * Friction on the spring-dashpot contact of the particles (near the floor: with it), as
+   * the difference of the rows with and without it: it does no positive work on the
+   * particles' motion (force · V + torque · ω ≤ 0 summed over them); with equal semi-axes
+   * written as ellipses or ellipsoids (same_as, the scene written with balls) its rows
+   * are the balls'.
+   */
+  template <int dim>
+  void test_friction_work(const std::string &particles, const bool near_wall,
+                          const std::string &same_as = "")
+  {
+    const std::string spring = "  set Model = spring-dashpot\n  set Range = 0.05\n";
+    const std::string model  = near_wall ? none_model : spring + "  set Friction coefficient = 0.3\n";
+    const std::string dry    = near_wall ? none_model : spring;
+    const std::string wall_dry = "  set Range = 0.05\n  set Model = spring-dashpot\n";
+    const ForceRows with = test_force<dim>("", particles, true, model, "", near_wall, wall_friction);
+    const ForceRows without = test_force<dim>("", particles, true, dry, "", near_wall, wall_dry);
+    const Eigen::VectorXd friction = without.r - with.r; // the rows are −(force, torque)
+    const double          work     = friction.dot(with.y);
+    check(friction.norm() > 1e-3 * with.r.norm() && work < 0,
+          "friction acts and does negative work", "power " + std::to_string(work));
+    if (near_wall)
+      {
+        // It acts at the middle of the gap between the floor and the particle's lowest
+        // point: the torque's part across the force and the floor normal is that lever.
+        Tensor<1, dim> F, n;
+        Tensor<1, 3>   T;
+        n[1] = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          F[d] = friction[d];
+        for (unsigned int k = 0; k < RigidBody<dim>::n_rotations; ++k)
+          T[RigidBody<dim>::rotation_component(k)] = friction[dim + k];
+        Tensor<1, 3> n_cross_F;
+        if constexpr (dim == 2)
+          n_cross_F[2] = n[0] * F[1] - n[1] * F[0];
+        else
+          n_cross_F = cross_product_3d(n, F);
+        const double lever = T * n_cross_F / F.norm_square();
+        const double expected = -(with.height + with.depth) / 2;
+        check(std::abs(lever - expected) <= 1e-9 * with.depth,
+              "friction acts halfway between the floor and the lowest point",
+              "lever " + std::to_string(lever) + ", expected " + std::to_string(expected));
+      }
+    if (!same_as.empty())
+      {
+        const ForceRows balls = test_force<dim>("", same_as, true, model, "", near_wall, wall_friction);
+        check((balls.r - with.r).norm() <= 1e-12 * with.r.norm(),
+              "an ellipse of equal semi-axes has the ball's contact rows");
+      }
   }
 
   /// The two disks after a dry bounce, and their mass and moment of inertia.
@@ -681,6 +781,22 @@ int main()
       test_force<2>("", "0.4, 0.12 : ellipse 0.15, 0.08, 30 : 2", true, none, "", true);
       test_force<3>("", "0.4, 0.12, 0.5 : ellipsoid 0.15, 0.08, 0.1, 1, 2, 3, 30 : 2", true,
                     spring, "", true);
+      // Friction on ellipses and ellipsoids, between a pair and with the floor; of equal
+      // semi-axes, against the balls.
+      test_friction_work<2>("0.4, 0.5 : ellipse 0.15, 0.08, 30 : 2 ; 0.62, 0.6 : ellipse 0.1, 0.06, -20 : 3",
+                            false);
+      test_friction_work<2>("0.4, 0.5 : ellipse 0.1, 0.1, 40 : 2 ; 0.59, 0.6 : ellipse 0.1, 0.1, -20 : 3",
+                            false, "0.4, 0.5 : 0.1 : 2 ; 0.59, 0.6 : 0.1 : 3");
+      test_friction_work<3>("0.4, 0.5, 0.5 : ellipsoid 0.15, 0.08, 0.1, 1, 2, 3, 30 : 2 ; "
+                            "0.62, 0.62, 0.52 : ellipsoid 0.1, 0.06, 0.09, 1, 0, 0, 50 : 3", false);
+      test_friction_work<3>("0.4, 0.5, 0.5 : ellipsoid 0.1, 0.1, 0.1, 1, 2, 3, 30 : 2 ; "
+                            "0.59, 0.6, 0.5 : ellipsoid 0.1, 0.1, 0.1, 1, 0, 0, 50 : 3", false,
+                            "0.4, 0.5, 0.5 : 0.1 : 2 ; 0.59, 0.6, 0.5 : 0.1 : 3");
+      test_friction_work<2>("0.4, 0.12 : ellipse 0.15, 0.08, 30 : 2", true);
+      test_friction_work<2>("0.4, 0.12 : ellipse 0.1, 0.1, 30 : 2", true, "0.4, 0.12 : 0.1 : 2");
+      test_friction_work<3>("0.4, 0.12, 0.5 : ellipsoid 0.15, 0.08, 0.1, 1, 2, 3, 30 : 2", true);
+      test_friction_work<3>("0.4, 0.12, 0.5 : ellipsoid 0.1, 0.1, 0.1, 1, 2, 3, 30 : 2", true,
+                            "0.4, 0.12, 0.5 : 0.1 : 2");
     }
   catch (const std::exception &exc)
     {

@@ -72,8 +72,6 @@ namespace fdparticle
 
     Model model() const { return contact_model; }
     bool  enabled() const override { return contact_model != Model::none; }
-    /// Friction needs balls (its arms are along the line of centres).
-    void check_scene(const ParticleSet<dim> &particles) const override;
 
     /// For the log: the spring-dashpot contact duration of the stiffest pair against the
     /// time step dt; empty for the other models.

@@ -56,9 +56,6 @@ namespace fdparticle
 
     bool enabled() const override { return on; }
 
-    /// Friction needs balls (its arms are along the line of centres).
-    void check_scene(const ParticleSet<dim> &particles) const override;
-
     /// For the log: the spring-dashpot contact duration of the shortest wall contact
     /// against the time step dt; empty for the repulsion.
     std::string describe(const double dt) const override;
