@@ -34,13 +34,13 @@ namespace fdparticle
       return m * offset + m * i.support_point(-m) - m * j.support_point(m);
     };
     double gap = gap_along(n);
-    for (unsigned int iteration = 0; iteration < 50; ++iteration)
+    for (unsigned int iteration = 0; iteration < 2000; ++iteration)
       {
         const Tensor<1, dim> ascent = gradient(n);
         const Tensor<1, dim> target = ascent / ascent.norm();
         Tensor<1, dim>       next = n;
         double               next_gap = gap;
-        for (double step = 1; step > 1e-3; step /= 2)
+        for (double step = 1; step > 1e-12; step /= 2)
           {
             Tensor<1, dim> m = n + step * (target - n);
             m /= m.norm();
@@ -67,11 +67,15 @@ namespace fdparticle
         t[0] /= t[0].norm();
         if constexpr (dim == 3)
           t[1] = cross_product_3d(n, t[0]);
+        // At m, the tangents t_k projected onto m's tangent plane: G vanishes where ∇g is
+        // parallel to m. (Unprojected, G would vanish where ∇g is parallel to n, and its
+        // derivative gain a term g I that turns Newton's step away from the maximum of a
+        // long ellipsoid.)
         const auto tangential = [&](const Tensor<1, dim> &m) {
           const Tensor<1, dim> grad = gradient(m);
           Tensor<1, dim - 1>   G;
           for (unsigned int k = 0; k + 1 < dim; ++k)
-            G[k] = t[k] * grad;
+            G[k] = (t[k] - (t[k] * m) * m) * grad;
           return G;
         };
         const Tensor<1, dim - 1> G = tangential(n);
@@ -93,7 +97,13 @@ namespace fdparticle
         for (unsigned int k = 0; k + 1 < dim; ++k)
           for (unsigned int l = 0; l + 1 < dim; ++l)
             m -= J(k, l) * G[l] * t[k];
-        n = m / m.norm();
+        m /= m.norm();
+        // g is largest at the solution: a step that lowers it beyond round-off has left
+        // Newton's region, and the ascent's n stands.
+        if (gap_along(m) < gap - 1e-14 * offset.norm())
+          break;
+        n = m;
+        gap = gap_along(n);
       }
     gap = gap_along(n);
     c.gap = gap;
