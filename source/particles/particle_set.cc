@@ -45,60 +45,55 @@ namespace fdparticle
     prm.leave_subsection();
   }
 
+  template <int dim>
+  void read_shape(const std::string &field, const std::string &name, Particle<dim> &p)
+  {
+    using namespace ParameterTools;
+    const std::string text = trim(field);
+    const std::string word = text.substr(0, text.find_first_of(" \t"));
+    if (word != "ellipse" && word != "ellipsoid")
+      {
+        const double radius = to_double(text, name + " radius");
+        AssertThrow(radius > 0, ExcMessage("Parameter '" + name +
+                                           "': the radius must be positive, got " +
+                                           field + "."));
+        p.shape = std::make_shared<const Sphere<dim>>(radius);
+        return;
+      }
+    const std::string form = dim == 2 ? "'ellipse a, b [, angle in degrees]'" :
+                                        "'ellipsoid a, b, c [, axis x, y, z, angle in degrees]'";
+    AssertThrow(word == (dim == 2 ? "ellipse" : "ellipsoid"),
+                ExcMessage("Parameter '" + name + "': " + (dim == 2 ? "a 2D" : "a 3D") +
+                           " scene has no " + word + "; the shape is a radius or " + form +
+                           "."));
+    std::vector<double> values;
+    std::string         numbers = text.substr(word.size());
+    std::replace(numbers.begin(), numbers.end(), ',', ' ');
+    std::istringstream in(numbers);
+    for (std::string v; in >> v;)
+      values.push_back(to_double(v, name + " " + word));
+    const unsigned int n_angle = (dim == 2 ? 1 : 4);
+    AssertThrow(values.size() == dim || values.size() == dim + n_angle,
+                ExcMessage("Parameter '" + name + "': '" + text + "' is not of the form " +
+                           form + "."));
+    Tensor<1, dim> axes;
+    for (unsigned int d = 0; d < dim; ++d)
+      axes[d] = values[d];
+    p.shape = std::make_shared<const Ellipsoid<dim>>(axes, name);
+    if (values.size() == dim)
+      return;
+    Eigen::Vector3d axis(0, 0, 1);
+    if (dim == 3)
+      axis = Eigen::Vector3d(values[3], values[4], values[5]);
+    AssertThrow(axis.norm() > 0,
+                ExcMessage("Parameter '" + name + "': the axis of the rotation is zero."));
+    p.orientation = Eigen::Quaterniond(
+      Eigen::AngleAxisd(values.back() * numbers::PI / 180, axis.normalized()));
+    p.orientation_old = p.orientation;
+  }
+
   namespace
   {
-    /// The shape field of an entry: a radius (a ball), 'ellipse a, b [, angle]' (2D; the
-    /// a axis turned by angle degrees from x) or 'ellipsoid a, b, c [, axis x, y, z,
-    /// angle]' (3D; the body turned by angle degrees about the axis); the numbers may be
-    /// separated by spaces instead of commas (a column of a particle file). Sets the shape
-    /// and the orientation of p.
-    template <int dim>
-    void read_shape(const std::string &field, const std::string &name, Particle<dim> &p)
-    {
-      using namespace ParameterTools;
-      const std::string text = trim(field);
-      const std::string word = text.substr(0, text.find_first_of(" \t"));
-      if (word != "ellipse" && word != "ellipsoid")
-        {
-          const double radius = to_double(text, name + " radius");
-          AssertThrow(radius > 0, ExcMessage("Parameter '" + name +
-                                             "': the radius must be positive, got " +
-                                             field + "."));
-          p.shape = std::make_shared<const Sphere<dim>>(radius);
-          return;
-        }
-      const std::string form = dim == 2 ? "'ellipse a, b [, angle in degrees]'" :
-                                          "'ellipsoid a, b, c [, axis x, y, z, angle in degrees]'";
-      AssertThrow(word == (dim == 2 ? "ellipse" : "ellipsoid"),
-                  ExcMessage("Parameter '" + name + "': " + (dim == 2 ? "a 2D" : "a 3D") +
-                             " scene has no " + word + "; the shape is a radius or " + form +
-                             "."));
-      std::vector<double> values;
-      std::string         numbers = text.substr(word.size());
-      std::replace(numbers.begin(), numbers.end(), ',', ' ');
-      std::istringstream in(numbers);
-      for (std::string v; in >> v;)
-        values.push_back(to_double(v, name + " " + word));
-      const unsigned int n_angle = (dim == 2 ? 1 : 4);
-      AssertThrow(values.size() == dim || values.size() == dim + n_angle,
-                  ExcMessage("Parameter '" + name + "': '" + text + "' is not of the form " +
-                             form + "."));
-      Tensor<1, dim> axes;
-      for (unsigned int d = 0; d < dim; ++d)
-        axes[d] = values[d];
-      p.shape = std::make_shared<const Ellipsoid<dim>>(axes, name);
-      if (values.size() == dim)
-        return;
-      Eigen::Vector3d axis(0, 0, 1);
-      if (dim == 3)
-        axis = Eigen::Vector3d(values[3], values[4], values[5]);
-      AssertThrow(axis.norm() > 0,
-                  ExcMessage("Parameter '" + name + "': the axis of the rotation is zero."));
-      p.orientation = Eigen::Quaterniond(
-        Eigen::AngleAxisd(values.back() * numbers::PI / 180, axis.normalized()));
-      p.orientation_old = p.orientation;
-    }
-
     /// A particle from the fields of one entry (a Particles/Particles entry or a line of
     /// the particle file): centre, radius, density[, motion[, velocity[, angular
     /// velocity]]]; 'name' says where the entry came from in error messages.
@@ -228,19 +223,9 @@ namespace fdparticle
       for (const auto &entry : ParticleFile<dim>::read(file, comm))
         particles.push_back(make_particle<dim>(entry.fields, entry.name,
                                                "'" + ParticleFile<dim>::line_form() + "'"));
-    // Random balls avoid the listed ones; they are checked with them below.
-    std::vector<typename RandomPacking<dim>::Ball> listed;
-    for (const Particle<dim> &p : particles)
-      listed.push_back({p.position, p.bounding_radius()});
-    for (const auto &ball : random.place(listed))
-      {
-        Particle<dim> p;
-        p.position = p.position_old = ball.center;
-        p.place(p.position, p.orientation);
-        p.shape = std::make_shared<const Sphere<dim>>(ball.radius);
-        p.density = random.density();
-        particles.push_back(p);
-      }
+    // Random particles avoid the listed ones; they are checked with them below.
+    for (const Particle<dim> &p : random.place(particles))
+      particles.push_back(p);
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         particles[k].id     = k;
@@ -534,6 +519,9 @@ namespace fdparticle
 
   template struct Particle<2>;
   template struct Particle<3>;
+  template void read_shape<2>(const std::string &, const std::string &, Particle<2> &);
+  template void read_shape<3>(const std::string &, const std::string &, Particle<3> &);
+
   template <int dim>
   void ParticleSet<dim>::declare_columns(StatisticsTable &statistics) const
   {

@@ -74,16 +74,16 @@ namespace unit_check
   }
 
   /**
-   * |a − b| to the nearest periodic image of b, found by brute force: every shift by −1,
-   * 0 or +1 box lengths in the periodic directions of the domain (a fdparticle::Domain).
+   * a − b to the nearest periodic image of b, found by brute force: every shift by −1, 0
+   * or +1 box lengths in the periodic directions of the domain (a fdparticle::Domain).
    * The reference the neighbour searches are checked against.
    */
   template <int dim, typename Domain>
-  double nearest_image_distance(const dealii::Point<dim> &a, const dealii::Point<dim> &b,
-                                const Domain &domain)
+  dealii::Tensor<1, dim> nearest_image_offset(const dealii::Point<dim> &a,
+                                              const dealii::Point<dim> &b, const Domain &domain)
   {
     const dealii::Tensor<1, dim> length = domain.upper_corner() - domain.lower_corner();
-    double                       best = std::numeric_limits<double>::max();
+    dealii::Tensor<1, dim>       best   = a - b;
     for (unsigned int s = 0; s < std::pow(3, dim); ++s)
       {
         dealii::Tensor<1, dim> offset = a - b;
@@ -95,10 +95,18 @@ namespace unit_check
             allowed = allowed && (shift == 0 || domain.is_periodic(d));
             offset[d] += shift * length[d];
           }
-        if (allowed)
-          best = std::min(best, offset.norm());
+        if (allowed && offset.norm() < best.norm())
+          best = offset;
       }
     return best;
+  }
+
+  /// |a − b| to the nearest periodic image of b (nearest_image_offset).
+  template <int dim, typename Domain>
+  double nearest_image_distance(const dealii::Point<dim> &a, const dealii::Point<dim> &b,
+                                const Domain &domain)
+  {
+    return nearest_image_offset(a, b, domain).norm();
   }
 
   /// Print the tally; 0 if every check passed (use as main's return value).

@@ -245,6 +245,14 @@ namespace fdparticle
     }
   };
 
+  /// Set p's shape and orientation from the shape field of an entry: a radius (a ball),
+  /// 'ellipse a, b [, angle]' (2D; the a axis turned by angle degrees from x) or
+  /// 'ellipsoid a, b, c [, axis x, y, z, angle]' (3D; the body turned by angle degrees
+  /// about the axis); the numbers may be separated by spaces instead of commas (a column of
+  /// a particle file). Throws a one-line error naming `name` for a bad field.
+  template <int dim>
+  void read_shape(const std::string &field, const std::string &name, Particle<dim> &p);
+
   /**
    * The particles of a scene (subsection Particles): parsing and validation of the list,
    * their unknowns' numbering in the particle block, and the kinematics advanced after
