@@ -82,7 +82,7 @@ namespace fdparticle
   bool ParticleRefinement<dim>::in_band(const typename Triangulation<dim>::cell_iterator &cell,
                                         const ParticleSet<dim> &particles) const
   {
-    // Distance from the surface |x − X| = R to the cell's box, against band × diameter.
+    // Distance from the particle's surface to the cell's box, against band × diameter.
     // Only the balls within the margin of a box can pass: the index finds them, in the box
     // grown by one cell more than the margin, so that the strict test of meeting() cannot
     // drop a ball exactly at the margin. In a periodic direction each image of a centre
@@ -106,8 +106,32 @@ namespace fdparticle
               far2 += std::pow(std::max(std::abs(X[d] - box.lower_bound(d)),
                                         std::abs(X[d] - box.upper_bound(d))),
                                2);
-            if (std::sqrt(far2) >= p.shape->inscribed_radius() - margin - tolerance)
+            if (p.shape->is_isotropic())
+              {
+                if (std::sqrt(far2) >= p.shape->inscribed_radius() - margin - tolerance)
+                  return true;
+                continue;
+              }
+            // Another (convex) shape: the box grown by the margin meets it, and not every
+            // corner lies in the shape shrunk about its centre by the factor
+            // s = 1 − margin/inscribed radius, whose points are at least the margin inside
+            // (its support function is s h(n) ≤ h(n) − margin). For a ball both are the
+            // test above.
+            BoundingBox<dim> grown = box;
+            grown.extend(margin + tolerance);
+            if (!p.shape->meets(grown, X, p.geometry_rotation))
+              continue;
+            const double s = 1 - (margin + tolerance) / p.shape->inscribed_radius();
+            if (s <= 0)
               return true;
+            for (unsigned int v = 0; v < (1u << dim); ++v)
+              {
+                Tensor<1, dim> r;
+                for (unsigned int d = 0; d < dim; ++d)
+                  r[d] = ((v >> d) & 1 ? box.upper_bound(d) : box.lower_bound(d)) - X[d];
+                if (!p.shape->contains(transpose(p.geometry_rotation) * r / s))
+                  return true;
+              }
           }
       }
     return false;

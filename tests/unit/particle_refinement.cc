@@ -7,7 +7,8 @@
 // so the mirror maps the grid to itself), which it is not when the band stops at the face.
 // The same box without periodicity keeps the far cells coarse. A ball centred on a vertex
 // with a radius of whole cells, moved by round-off, keeps a mesh symmetric about the plane
-// it was on.
+// it was on. Around an elongated ellipse the finest cells follow its boundary, not its
+// bounding or inscribed circles.
 
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_tools.h>
@@ -19,8 +20,12 @@
 
 #include "unit_check.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <string>
+#include <vector>
 
 using namespace dealii;
 using namespace fdparticle;
@@ -166,6 +171,52 @@ int main(int argc, char **argv)
     check(n == 0, "the adapted mesh is its own mirror image through x = 0.5",
           std::to_string(n) + " of " + std::to_string(moved.tria.n_active_cells()) +
             " cells have none");
+  }
+  std::cout << "2D: an elongated ellipse, turned" << std::endl;
+  {
+    // On 16^2 cells refined twice around an ellipse 0.3 x 0.12 turned by 30 degrees: the
+    // cells its boundary crosses are refined to the finest level, and a finest cell lies
+    // within 2.5 times its parent's size h of the boundary: its parent was in the band
+    // (width 1), which reaches √2 h outside (the box grown by h) and a/b h inside (the
+    // ellipse shrunk about its centre by 1 − h/b), not deep inside nor off the ellipse's
+    // sides within its bounding circle (0.18 from it). The boundary is sampled at 4000
+    // points.
+    Scene<2> ellipse(16, "", "0.5, 0.5 : ellipse 0.3, 0.12, 30 : 1", 2);
+    ellipse.adapt();
+    std::vector<Point<2>> boundary;
+    const double          t = 30 * numbers::PI / 180;
+    for (unsigned int k = 0; k < 4000; ++k)
+      {
+        const double s = 2 * numbers::PI * k / 4000;
+        const double x = 0.3 * std::cos(s), y = 0.12 * std::sin(s);
+        boundary.emplace_back(0.5 + std::cos(t) * x - std::sin(t) * y,
+                              0.5 + std::sin(t) * x + std::cos(t) * y);
+      }
+    unsigned int n_cut_coarse = 0, n_far = 0, n_finest = 0;
+    for (const auto &cell : ellipse.tria.active_cell_iterators())
+      {
+        const BoundingBox<2> box = cell->bounding_box();
+        double               distance = std::numeric_limits<double>::max();
+        for (const Point<2> &x : boundary)
+          {
+            double d2 = 0;
+            for (unsigned int d = 0; d < 2; ++d)
+              d2 += std::pow(std::max({box.lower_bound(d) - x[d], 0.0, x[d] - box.upper_bound(d)}), 2);
+            distance = std::min(distance, std::sqrt(d2));
+          }
+        const double parent_h = 2 * cell->diameter() / std::sqrt(2.0);
+        if (cell->level() == 2)
+          {
+            ++n_finest;
+            n_far += (distance > 2.5 * parent_h * (1 + 1e-3));
+          }
+        else
+          n_cut_coarse += (distance == 0);
+      }
+    check(n_cut_coarse == 0, "the cells the boundary crosses are at the finest level",
+          std::to_string(n_cut_coarse) + " are not");
+    check(n_far == 0, "the finest cells lie within 2.5 parent sizes of the boundary",
+          std::to_string(n_far) + " of " + std::to_string(n_finest) + " do not");
   }
   return summary();
 }
