@@ -9,7 +9,7 @@
 # integrated from the simulated axis at t = 1: the time to turn, the largest angle between
 # the two axes and the drift of the orbit constant C.
 # Writes doc/shapes_jeffery_3d.csv (with the date, the commit and the machine) and
-# doc/shapes_jeffery_3d.png. About 15 minutes and 2.1 GB on one core; run it alone.
+# doc/shapes_jeffery_3d.png. About 17 minutes and 1.6 GB on one core; run it alone.
 #
 # Usage: bash benchmarks/jeffery_3d.sh     (EXE=PATH, WORK=DIR override)
 set -euo pipefail
