@@ -652,7 +652,7 @@ namespace
     // Surface samples: the unit circle or sphere mapped by Q diag(a).
     const auto samples = [&](const Particle<dim> &p, const Tensor<1, dim> &a) {
       std::vector<Point<dim>> x;
-      const unsigned int      n = (dim == 2 ? 4000 : 120);
+      const unsigned int      n = (dim == 2 ? 4000 : 60);
       for (unsigned int s = 0; s < n; ++s)
         for (unsigned int t = 0; t < (dim == 2 ? 1u : 2 * n); ++t)
           {
@@ -699,7 +699,7 @@ namespace
         ++n_pairs;
         // The samples are a subset of the surfaces: the true gap is at most their distance,
         // and below it by no more than the sampling's chord error.
-        const double resolution = (dim == 2 ? 1e-6 : 2e-3);
+        const double resolution = (dim == 2 ? 1e-6 : 1e-3);
         worst = std::max(worst, sampled - c.gap);
         wrong_gap += !(c.gap <= sampled + 1e-12 && c.gap >= sampled - resolution);
         const Point<dim> pa = A.geometry_center + c.arm_i, pb = B.geometry_center + c.arm_j;
