@@ -1,0 +1,199 @@
+#!/usr/bin/python3
+"""Stokes drag of prolate spheroids (doc/shapes.md, "Stokes drag of a spheroid").
+
+A fixed spheroid, long semi-axis a = 0.1 and short ones b = a/r (axis ratio r = 1, 2, 4),
+in the centre of a periodic unit cube, its axis along the body force f = (1, 0, 0)
+("along"), across it ("across") or turned by 30 degrees from it about z ("tilted": the flow
+gains a y-component, compared too); steady Stokes in one BDF1 step of dt = 100 (mu = 1),
+level-set cut cells, 4^3 base cells refined around the particle to 2b/h = 6.4 and 12.8
+(r = 4: 6.4 only; 12.8 would take about 1.5 M unknowns).
+The body force acts on the fluid, so at steady state the particle holds F = f (L^3 - |P|)
+(the fluid's momentum balance, exact); U = mean_vx over the cell. The force the program
+computes from the multiplier, fx (doc/method.md §9), is compared with F on the side.
+
+The periodic images slow the flow: for any particle small against the period L,
+U/F = 1/R - 2.837297/(6 pi mu L) + O(|P|/L^3) (Hasimoto 1959; for a sphere the series
+1/K = 1 - 1.7601 c^(1/3) + c - ..., doc/references), so the isolated resistance is
+R = F / (U + 2.837297 F/(6 pi mu L)); the neglected term is of the order of the volume
+fraction (1e-3 for r = 2). R is compared with the analytic resistance of a prolate
+spheroid (Oberbeck 1876; Chwang & Wu 1975, e = sqrt(1 - 1/r^2), l = ln((1+e)/(1-e))):
+    along:  16 pi mu a e^3 / ((1 + e^2) l - 2 e)
+    across: 32 pi mu a e^3 / (2 e + (3 e^2 - 1) l)
+and 6 pi mu a for the sphere (r = 1, the control of the periodic correction); tilted, the
+mobility M = n n^T / R_along + (I - n n^T) / R_across (n the axis) gives U = M F.
+
+Writes doc/shapes_drag.csv (each row with the date, commit and machine) and prints the
+table of doc/shapes.md. About 15 minutes on 2 ranks; the finest runs take 6.4 GB a rank.
+
+Usage (regenerate):  /usr/bin/python3 benchmarks/spheroid_drag.py [--ranks 2]
+    [--work DIR] [--executable PATH] [--reuse] [--cases 1-along-3,2-along-4,...]
+"""
+import argparse
+import csv
+import datetime
+import math
+import os
+import re
+import socket
+import subprocess
+import sys
+import time
+
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HASIMOTO = 2.837297  # 1.7601 (4 pi / 3)^(1/3): the periodic Stokeslet's self-term
+A = 0.1
+# (axis ratio, direction, particle refinement levels): 2b/h = 2 (A/r) 4 2^levels.
+CASES = [(1, "along", 3), (1, "along", 4),
+         (2, "along", 4), (2, "across", 4), (2, "tilted", 4),
+         (2, "along", 5), (2, "across", 5), (2, "tilted", 5),
+         (4, "along", 5), (4, "across", 5)]
+TILT = 30  # degrees about z, "tilted": the axis in the x-y plane
+
+SCENE = """set Dimension = 3
+set Gravity = 0, 0, 0
+subsection Geometry
+  set Lower corner = 0, 0, 0
+  set Upper corner = 1, 1, 1
+  set Subdivisions = 4, 4, 4
+  set Periodic directions = x, y, z
+end
+subsection Fluid
+  set Density = 1
+  set Viscosity = 1
+  set Convection = false
+  set Body force = 1, 0, 0
+end
+subsection Particles
+  set Particles = 0.5, 0.5, 0.5 : {shape} : 1 : fixed
+end
+subsection Quadrature
+  set Cut cells = level set
+end
+subsection Refinement
+  set Particle refinement levels = {levels}
+end
+subsection Solver
+  set Linear solver = iterative
+  set Cut cell patch memory = {patch}
+end
+subsection Time
+  set Time step = 100
+  set End time = 100
+  set Scheme = BDF1
+end
+subsection Output
+  set Directory = {out}
+  set VTU interval = 0
+end
+"""
+
+
+def resistance(ratio, direction):
+    """The resistance F/U of the isolated spheroid moving along or across its axis, mu = 1."""
+    if ratio == 1:
+        return 6 * math.pi * A
+    e = math.sqrt(1 - 1 / ratio**2)
+    l = math.log((1 + e) / (1 - e))
+    if direction == "along":
+        return 16 * math.pi * A * e**3 / ((1 + e**2) * l - 2 * e)
+    return 32 * math.pi * A * e**3 / (2 * e + (3 * e**2 - 1) * l)
+
+
+def mobility(ratio, direction):
+    """(M_xx, M_yx) of the isolated spheroid, U = M F: along, across, or tilted by TILT
+    degrees (M = n n^T / R_along + (I - n n^T) / R_across, n the axis)."""
+    along, across = 1 / resistance(ratio, "along"), 1 / resistance(ratio, "across")
+    if direction != "tilted":
+        return (along if direction == "along" else across), 0.0
+    c, s = math.cos(math.radians(TILT)), math.sin(math.radians(TILT))
+    return c * c * along + s * s * across, c * s * (along - across)
+
+
+def shape(ratio, direction):
+    b = A / ratio
+    if ratio == 1:
+        return f"{A}"
+    axes = (b, A, b) if direction == "across" else (A, b, b)
+    turn = f", 0, 0, 1, {TILT}" if direction == "tilted" else ""
+    return "ellipsoid " + ", ".join(f"{x:.6g}" for x in axes) + turn
+
+
+def last_row(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return rows
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
+    p.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "spheroid_drag"))
+    p.add_argument("--ranks", type=int, default=2)
+    p.add_argument("--reuse", action="store_true", help="keep finished runs")
+    p.add_argument("--patch-memory", default="12",
+                   help="Solver/Cut cell patch memory, GB a rank (the finest runs' patch "
+                        "needs 7 GB on one rank; without it they take many more iterations)")
+    p.add_argument("--cases", help="RATIO-DIRECTION-LEVELS,... (default: all)")
+    args = p.parse_args()
+    cases = CASES
+    if args.cases:
+        cases = [(int(r), d, int(l)) for r, d, l in (c.split("-") for c in args.cases.split(","))]
+    os.makedirs(args.work, exist_ok=True)
+    commit = subprocess.run(["git", "-C", TOP, "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip()
+    stamp = [datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%MZ"), commit,
+             socket.gethostname()]
+    header = ["axis_ratio", "direction", "levels", "b_over_h", "dofs", "ranks", "wall_seconds",
+              "peak_mb_per_rank", "fx", "mean_vx", "mean_vy", "resistance_periodic",
+              "resistance_isolated", "analytic", "error_percent", "cross_error_percent_of_mxx",
+              "fx_error_percent", "date", "commit", "machine"]
+    rows = []
+    for ratio, direction, levels in cases:
+        name = f"r{ratio}-{direction}-l{levels}"
+        out = os.path.join(args.work, name)
+        prm = os.path.join(args.work, name + ".prm")
+        timing = os.path.join(args.work, name + ".time")
+        if not (args.reuse and os.path.exists(os.path.join(out, "particles.csv"))):
+            with open(prm, "w") as f:
+                f.write(SCENE.format(shape=shape(ratio, direction), levels=levels, out=out,
+                                     patch=args.patch_memory))
+            command = [args.executable, prm]
+            if args.ranks > 1:
+                command = ["bash", os.path.join(TOP, "scripts", "mpirun.sh"), str(args.ranks)] + command
+            print(f"{name}: running", flush=True)
+            with open(os.path.join(args.work, name + ".log"), "w") as log:
+                status = subprocess.call(["/usr/bin/time", "-f", "%e %M", "-o", timing] + command,
+                                         stdout=log, stderr=subprocess.STDOUT)
+            if status != 0:
+                print(f"{name}: the run failed (see {name}.log)", file=sys.stderr)
+                continue
+        particle = last_row(os.path.join(out, "particles.csv"))[-1]
+        stats = last_row(os.path.join(out, "statistics.csv"))[-1]
+        seconds, peak_kb = open(timing).read().split()[-2:]
+        with open(os.path.join(args.work, name + ".log")) as log:
+            ranks = re.search(r"(\d+) MPI rank", log.read()).group(1)
+        fx, u, v = (float(particle["fx"]), float(stats["mean_vx"]), float(stats["mean_vy"]))
+        force = 1 - 4 / 3 * math.pi * A * (A / ratio) ** 2  # f (L^3 - |P|)
+        # The isolated mobility: U/F plus the images' isotropic self-term (mu = L = 1).
+        m_xx, m_yx = u / force + HASIMOTO / (6 * math.pi), v / force
+        reference_xx, reference_yx = mobility(ratio, direction)
+        # M_yx against M_xx: the neglected image terms are a fraction of M_xx, not of M_yx.
+        cross = f"{100 * (m_yx - reference_yx) / reference_xx:+.2f}" if reference_yx else ""
+        rows.append([ratio, direction, levels, f"{(A / ratio) * 4 * 2**levels:.2f}",
+                     stats["dofs"], ranks, seconds, f"{int(peak_kb) / 1024:.0f}",
+                     f"{fx:.6f}", f"{u:.6g}", f"{v:.6g}", f"{force / u:.5f}", f"{1 / m_xx:.5f}",
+                     f"{1 / reference_xx:.5f}", f"{100 * (reference_xx / m_xx - 1):+.2f}",
+                     cross, f"{100 * (fx / force - 1):+.2f}"] + stamp)
+        print(" ".join(str(x) for x in rows[-1][:17]), flush=True)
+    with open(os.path.join(TOP, "doc", "shapes_drag.csv"), "w", newline="") as f:
+        csv.writer(f).writerows([header] + rows)
+    print("\n| r = a/b | motion | 2b/h | unknowns | F/(μU) periodic | isolated | "
+          "Oberbeck / Chwang & Wu | error % | M_yx error, % of M_xx | fx from λ, error % | "
+          "ranks | s | MB a rank |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r[0]} | {r[1]} | {2 * float(r[3]):.1f} | {r[4]} | {r[11]} | {r[12]} | "
+              f"{r[13]} | {r[14]} | {r[15]} | {r[16]} | {r[5]} | {float(r[6]):.0f} | {r[7]} |")
+
+
+if __name__ == "__main__":
+    main()
