@@ -2,9 +2,9 @@
 """Stokes drag of prolate spheroids (doc/shapes.md, "Stokes drag of a spheroid").
 
 A fixed spheroid, long semi-axis a = 0.1 and short ones b = a/r (axis ratio r = 1, 2, 4),
-in the centre of a periodic unit cube, its axis along the body force f = (1, 0, 0)
-("along"), across it ("across") or turned by 30 degrees from it about z ("tilted": the flow
-gains a y-component, compared too); steady Stokes in one BDF1 step of dt = 100 (mu = 1),
+in the centre of the periodic unit cube of prm/validation/array3d.prm, its axis along the
+body force f = (1, 0, 0) ("along"), across it ("across") or turned by 30 degrees from it
+about z ("tilted": the flow gains a y-component, compared too); steady Stokes in one BDF1 step of dt = 100 (mu = 1),
 level-set cut cells, 4^3 base cells refined around the particle to 2b/h = 6.4 and 12.8
 (r = 4: 6.4 only; 12.8 would take about 1.5 M unknowns).
 The body force acts on the fluid, so at steady state the particle holds F = f (L^3 - |P|)
@@ -37,7 +37,7 @@ import re
 import socket
 import subprocess
 import sys
-import time
+from importlib.machinery import SourceFileLoader
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HASIMOTO = 2.837297  # 1.7601 (4 pi / 3)^(1/3): the periodic Stokeslet's self-term
@@ -49,43 +49,10 @@ CASES = [(1, "along", 3), (1, "along", 4),
          (4, "along", 5), (4, "across", 5)]
 TILT = 30  # degrees about z, "tilted": the axis in the x-y plane
 
-SCENE = """set Dimension = 3
-set Gravity = 0, 0, 0
-subsection Geometry
-  set Lower corner = 0, 0, 0
-  set Upper corner = 1, 1, 1
-  set Subdivisions = 4, 4, 4
-  set Periodic directions = x, y, z
-end
-subsection Fluid
-  set Density = 1
-  set Viscosity = 1
-  set Convection = false
-  set Body force = 1, 0, 0
-end
-subsection Particles
-  set Particles = 0.5, 0.5, 0.5 : {shape} : 1 : fixed
-end
-subsection Quadrature
-  set Cut cells = level set
-end
-subsection Refinement
-  set Particle refinement levels = {levels}
-end
-subsection Solver
-  set Linear solver = iterative
-  set Cut cell patch memory = {patch}
-end
-subsection Time
-  set Time step = 100
-  set End time = 100
-  set Scheme = BDF1
-end
-subsection Output
-  set Directory = {out}
-  set VTU interval = 0
-end
-"""
+# The scene: prm/validation/array3d.prm (the periodic unit cube, f = (1, 0, 0), steady
+# Stokes in one step) with the particle, its levels and the solver replaced.
+SCENE = os.path.join(TOP, "prm", "validation", "array3d.prm")
+STUDY = SourceFileLoader("fdparticle_study", os.path.join(TOP, "tools", "fdparticle-study")).load_module()
 
 
 def resistance(ratio, direction):
@@ -154,9 +121,15 @@ def main():
         prm = os.path.join(args.work, name + ".prm")
         timing = os.path.join(args.work, name + ".time")
         if not (args.reuse and os.path.exists(os.path.join(out, "particles.csv"))):
+            with open(SCENE) as f:
+                text = STUDY.apply_overrides(f.read(), {
+                    "Particles/Particles": f"0.5, 0.5, 0.5 : {shape(ratio, direction)} : 1 : fixed",
+                    "Refinement/Particle refinement levels": str(levels),
+                    "Solver/Linear solver": "iterative",
+                    "Solver/Cut cell patch memory": args.patch_memory,
+                    "Output/Directory": out, "Output/VTU interval": "0"})
             with open(prm, "w") as f:
-                f.write(SCENE.format(shape=shape(ratio, direction), levels=levels, out=out,
-                                     patch=args.patch_memory))
+                f.write(text)
             command = [args.executable, prm]
             if args.ranks > 1:
                 command = ["bash", os.path.join(TOP, "scripts", "mpirun.sh"), str(args.ranks)] + command
