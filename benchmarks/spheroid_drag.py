@@ -84,10 +84,9 @@ def shape(ratio, direction):
     return "ellipsoid " + ", ".join(f"{x:.6g}" for x in axes) + turn
 
 
-def last_row(path):
+def read_rows(path):
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return rows
+        return list(csv.DictReader(f))
 
 
 def main():
@@ -139,9 +138,10 @@ def main():
             if status != 0:
                 print(f"{name}: the run failed (see {name}.log)", file=sys.stderr)
                 continue
-        particle = last_row(os.path.join(out, "particles.csv"))[-1]
-        stats = last_row(os.path.join(out, "statistics.csv"))[-1]
-        seconds, peak_kb = open(timing).read().split()[-2:]
+        particle = read_rows(os.path.join(out, "particles.csv"))[-1]
+        stats = read_rows(os.path.join(out, "statistics.csv"))[-1]
+        with open(timing) as f:
+            seconds, peak_kb = f.read().split()[-2:]
         with open(os.path.join(args.work, name + ".log")) as log:
             ranks = re.search(r"(\d+) MPI rank", log.read()).group(1)
         fx, u, v = (float(particle["fx"]), float(stats["mean_vx"]), float(stats["mean_vy"]))

@@ -279,8 +279,8 @@ int main(int argc, char **argv)
       {
         check_scene<2>(convection, cut_cells);
 #ifdef DEBUG
-        // deal.II's assertions run each 3D code path once: Navier-Stokes with the
-        // level-set rule (the four 3D scenes take minutes in a Debug build).
+        // In a Debug build deal.II's assertions run on one 3D scene, the one with the
+        // most terms: Navier-Stokes with the level-set rule (the four take minutes).
         if (!convection || cut_cells != "level set")
           continue;
 #endif

@@ -19,11 +19,12 @@ namespace fdparticle
    * particles), by random sequential addition: each draws its size (the radius of a ball,
    * the largest semi-axis of an ellipse or ellipsoid of the given axis ratios) and, unless
    * a ball, an orientation uniform over all rotations; then centres uniformly in the
-   * sub-box until one keeps the minimum gap to the walls and to every particle of the
-   * packing (those of the particle list and file included): bounding balls found with a
-   * CellList, the true gap (ContactGeometry) where they come closer. The numbers come from
-   * a 64-bit Mersenne twister turned into doubles by this class, not by a library
-   * distribution, so one seed gives the same particles on every rank and every machine.
+   * sub-box, of which the first that keeps the minimum gap to the walls and to every
+   * particle of the packing is taken (those of the particle list and file included):
+   * bounding balls found with a CellList, the true gap (ContactGeometry) where they come
+   * closer. The numbers come from a 64-bit Mersenne twister turned into doubles by this
+   * class, not by a library distribution, so one seed gives the same particles on every
+   * rank and every machine.
    */
   template <int dim>
   class RandomPacking
