@@ -18,8 +18,9 @@ debug_tests+='|^bad_|^(regression_sediment_2d|regression_cavity_2d|recovery_2d|r
 debug_tests+='|stability_tiny_dt_2d|validation_array_2d|hydrostatic_2d_zero|mpi_adaptive_2d)$'
 if [ "${1:-}" = "--debug" ]; then
   shift
-  # Only what these tests run: the program and their unit tests.
-  targets=(fdparticle)
+  # Only what these tests run: the program and their unit tests, without debug
+  # information (the assertions are what this build is for; it compiles two fifths faster).
+  targets=(-DFDPARTICLE_DEBUG_INFO=OFF fdparticle)
   for unit in $debug_units; do targets+=("unit_$unit"); done
   bash "$top/scripts/build.sh" --debug "${targets[@]}"
   cd "$top/build-debug"
