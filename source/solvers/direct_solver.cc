@@ -99,13 +99,14 @@ namespace fdparticle
                         Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
                         "Direct solver: the factorization of the finite-element block, MUMPS "
                         "(parallel) or KLU (serial, gathers the matrix on one rank).");
-      prm.declare_entry("MUMPS ordering", "metis",
-                        Patterns::Selection("metis|auto|amd|amf|qamd|pord"),
+      prm.declare_entry("MUMPS ordering", "default",
+                        Patterns::Selection("default|metis|auto|amd|amf|qamd|pord"),
                         "Fill-reducing ordering for MUMPS (ICNTL(7)). metis: METIS nested "
                         "dissection computed by fdparticle and given to MUMPS (Debian's MUMPS has "
-                        "no METIS of its own); the fewest flops and a cheap analysis. auto: "
-                        "MUMPS's choice (PORD); it and amd, amf, qamd need more flops "
-                        "(doc/performance.md).");
+                        "no METIS of its own); in 3D the fewest flops. qamd: MUMPS's approximate "
+                        "minimum degree; in 2D as few flops at a fifth of the analysis. default: "
+                        "metis in 3D, qamd in 2D, the fastest measured (doc/performance.md). "
+                        "auto: MUMPS's choice (PORD); amd, amf: more flops.");
       prm.declare_entry("Direct solver memory", "0", Patterns::Double(0),
                         "Largest memory, in GB per MPI rank, that the MUMPS factorization may "
                         "need by its analysis's estimate (INFOG(16)); a larger one stops the run "
@@ -119,11 +120,13 @@ namespace fdparticle
     prm.leave_subsection();
   }
 
-  void DirectSolver::parse_parameters(ParameterHandler &prm)
+  void DirectSolver::parse_parameters(ParameterHandler &prm, const unsigned int dim)
   {
     prm.enter_subsection("Solver");
     solver_type    = prm.get("Direct solver");
     mumps_ordering = prm.get("MUMPS ordering");
+    if (mumps_ordering == "default")
+      mumps_ordering = dim == 3 ? "metis" : "qamd";
     verbose        = prm.get_bool("Direct solver statistics");
     memory_limit_mb = 1000 * prm.get_double("Direct solver memory");
     prm.leave_subsection();

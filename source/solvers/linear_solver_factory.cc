@@ -26,6 +26,7 @@ namespace fdparticle
   }
 
   std::unique_ptr<LinearSolver> create_linear_solver(ParameterHandler &            prm,
+                                                     const unsigned int            dim,
                                                      const types::global_dof_index unknowns)
   {
     prm.enter_subsection("Solver");
@@ -41,7 +42,7 @@ namespace fdparticle
         return iterative;
       }
     auto direct = std::make_unique<DirectSolver>();
-    direct->parse_parameters(prm);
+    direct->parse_parameters(prm, dim);
     return direct;
   }
 } // namespace fdparticle

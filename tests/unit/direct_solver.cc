@@ -171,7 +171,7 @@ namespace
                                 "  set MUMPS ordering = " + ordering + "\n"
                                 "end\n");
     NewtonSystem s; // declared first: the solver refers to its matrix until destroyed
-    const std::unique_ptr<LinearSolver> created = create_linear_solver(prm, n + m);
+    const std::unique_ptr<LinearSolver> created = create_linear_solver(prm, 2, n + m);
     auto *solver = dynamic_cast<DirectSolver *>(created.get());
     check(solver != nullptr, what + ": 'Linear solver' selects the direct solver");
     if (!solver)
@@ -208,9 +208,24 @@ namespace
                                 "  set Linear solver = auto\n"
                                 "  set Iterative solver from = 1000\n"
                                 "end\n");
-    check(!create_linear_solver(prm, 999)->iterative(), "auto: 999 unknowns go to the direct solver");
-    check(create_linear_solver(prm, 1000)->iterative(),
+    check(!create_linear_solver(prm, 2, 999)->iterative(), "auto: 999 unknowns go to the direct solver");
+    check(create_linear_solver(prm, 2, 1000)->iterative(),
           "auto: 1000 unknowns go to the iterative solver");
+  }
+
+  /// MUMPS ordering = default: METIS nested dissection in 3D, QAMD in 2D.
+  void check_default_ordering()
+  {
+    ParameterHandler prm;
+    declare_linear_solver_parameters(prm);
+    for (const unsigned int dim : {2u, 3u})
+      {
+        const std::unique_ptr<LinearSolver> created = create_linear_solver(prm, dim, 100);
+        const auto *solver = dynamic_cast<const DirectSolver *>(created.get());
+        const std::string expected = dim == 3 ? "metis" : "qamd";
+        check(solver != nullptr && solver->ordering() == expected,
+              "default ordering in " + std::to_string(dim) + "D is " + expected);
+      }
   }
 } // namespace
 
@@ -225,5 +240,6 @@ int main(int argc, char **argv)
       check_solver("Amesos_Klu", "auto");
     }
   check_auto_choice();
+  check_default_ordering();
   return summary();
 }

@@ -48,7 +48,8 @@ namespace fdparticle
     ~DirectSolver() override;
 
     static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    /// dim picks the ordering 'MUMPS ordering = default' stands for.
+    void        parse_parameters(ParameterHandler &prm, const unsigned int dim);
 
     std::string name() const override { return "direct"; }
     void      pattern_changed() override;
@@ -64,6 +65,8 @@ namespace fdparticle
       double       symbolic_seconds = 0, numeric_seconds = 0, solve_seconds = 0;
     };
     const Statistics &statistics() const { return stats; }
+    /// The MUMPS ordering in use ('default' resolved).
+    const std::string &ordering() const { return mumps_ordering; }
 
   private:
     /**

@@ -15,9 +15,10 @@ namespace fdparticle
   /// them (subsection Solver). A new solver adds its name to the selection here.
   void declare_linear_solver_parameters(ParameterHandler &prm);
 
-  /// The implementation the parameters select, set up from them; 'auto' chooses by the
-  /// number of finite-element unknowns.
+  /// The implementation the parameters select, set up from them for a problem in dim
+  /// space dimensions; 'auto' chooses by the number of finite-element unknowns.
   std::unique_ptr<LinearSolver> create_linear_solver(ParameterHandler &            prm,
+                                                     const unsigned int            dim,
                                                      const types::global_dof_index unknowns);
 } // namespace fdparticle
 

@@ -51,7 +51,7 @@ namespace fdparticle
     // Chosen once, on the first mesh: 'auto' by its actual unknowns (an estimate from the
     // refinement band before the mesh exists overcounts).
     if (!linear_solver)
-      linear_solver = create_linear_solver(prm, dof_handler.n_dofs());
+      linear_solver = create_linear_solver(prm, dim, dof_handler.n_dofs());
     number_dofs_by_block(dof_handler, linear_solver->assembled_data().cell_pressure_masses,
                          system.blocks);
     if (linear_solver->assembled_data().velocity_inverse)
