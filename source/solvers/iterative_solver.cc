@@ -115,21 +115,36 @@ namespace fdparticle
         op    = std::make_unique<BorderedOperator>(system);
         stale = true;
       }
-    const bool rebuilt = stale || !preconditioner.initialized();
-    if (rebuilt)
-      {
-        preconditioner.initialize(system, *op);
-        stale          = false;
-        fresh          = true;
-        drifted        = false;
-        reference_rate = 0;
-        cheap_failed   = false;
-      }
+    bool rebuilt = false;
+    const auto rebuild = [&]() {
+      preconditioner.initialize(system, *op);
+      stale          = false;
+      fresh          = true;
+      drifted        = false;
+      reference_rate = 0;
+      cheap_failed   = false;
+      rebuilt        = true;
+    };
+    if (stale || !preconditioner.initialized())
+      rebuild();
 
     const Timer                   iteration_timer;
-    const unsigned int            inner_before = preconditioner.inner_iterations();
-    const double                  products_before = op->vmult_time();
-    const BlockPreconditioner::ApplicationTimes parts_before = preconditioner.application_times();
+    const double products_before = op->vmult_time();
+    // This solve's inner iterations and preconditioner times; the preconditioner counts
+    // from its last build, which may come in the middle of the solve.
+    unsigned int                          inner = 0;
+    BlockPreconditioner::ApplicationTimes parts;
+    unsigned int                          inner_before = preconditioner.inner_iterations();
+    BlockPreconditioner::ApplicationTimes parts_before = preconditioner.application_times();
+    const auto count = [&]() {
+      const BlockPreconditioner::ApplicationTimes &now = preconditioner.application_times();
+      inner += preconditioner.inner_iterations() - inner_before;
+      parts.velocity_cycles += now.velocity_cycles - parts_before.velocity_cycles;
+      parts.multiplier_cycles += now.multiplier_cycles - parts_before.multiplier_cycles;
+      parts.particle_block += now.particle_block - parts_before.particle_block;
+      inner_before = preconditioner.inner_iterations();
+      parts_before = now;
+    };
     BorderedOperator::BlockVector rhs, solution;
     op->reinit_vector(rhs);
     op->reinit_vector(solution);
@@ -146,7 +161,13 @@ namespace fdparticle
     bool         converged = rhs_norm == 0;
     unsigned int steps     = 0;
     double       residual  = 0;
-    if (!converged && cheap_iterations > 0 && !cheap_failed)
+    // The iterations and the residual from which the current preconditioner's rate counts.
+    unsigned int rate_start_step     = 0;
+    double       rate_start_residual = rhs_norm;
+    // The cheap form; when it misses the tolerance with a preconditioner built for an
+    // earlier operator, once more with one built for this operator (a cheap solve costs a
+    // few times the build; the inner solve behind a drifted preconditioner costs tens).
+    while (!converged && cheap_iterations > 0 && !cheap_failed)
       {
         SolverControl control(cheap_iterations, tolerance * rhs_norm, false, false);
         FGMRES        fgmres(control, FGMRES::AdditionalData(basis_size));
@@ -158,12 +179,21 @@ namespace fdparticle
           }
         catch (const SolverControl::NoConvergence &)
           {
-            // FGMRES leaves its best iterate in the solution; the inner solve goes on from it.
+            // FGMRES leaves its best iterate in the solution; the next form goes on from it.
             cheap_failed = true;
           }
         preconditioner.inner_solve = true;
-        steps                      = control.last_step();
-        residual                   = control.last_value();
+        steps += control.last_step();
+        residual = control.last_value();
+        if (cheap_failed && !fresh)
+          {
+            count();
+            rebuild();
+            inner_before = preconditioner.inner_iterations();
+            parts_before = preconditioner.application_times();
+            rate_start_step     = steps;
+            rate_start_residual = residual;
+          }
       }
     if (!converged)
       {
@@ -189,8 +219,8 @@ namespace fdparticle
     info.setup            = rebuilt;
     info.iterations       = steps;
     info.residual         = rhs_norm > 0 ? residual / rhs_norm : 0;
-    info.inner_iterations = preconditioner.inner_iterations() - inner_before;
-    const BlockPreconditioner::ApplicationTimes &parts = preconditioner.application_times();
+    count();
+    info.inner_iterations = inner;
     if (verbose && Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
       std::cout << "  iterative solver: " << info.iterations << " FGMRES iterations ("
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "
@@ -205,18 +235,18 @@ namespace fdparticle
                 << " s (preconditioner since built " << preconditioner.apply_time()
                 << " s, its patch " << preconditioner.patch_apply_time()
                 << " s; this solve: operator products " << op->vmult_time() - products_before
-                << " s, velocity V-cycles " << parts.velocity_cycles - parts_before.velocity_cycles
-                << " s, multiplier V-cycles "
-                << parts.multiplier_cycles - parts_before.multiplier_cycles
-                << " s, particle block " << parts.particle_block - parts_before.particle_block
+                << " s, velocity V-cycles " << parts.velocity_cycles
+                << " s, multiplier V-cycles " << parts.multiplier_cycles
+                << " s, particle block " << parts.particle_block
                 << " s)" << std::endl;
     // Iterations per decade of residual reduction compare solves to different tolerances;
     // the counts alone do not (a loose first solve of 3 iterations against a later one of 19
     // to a 30 times smaller tolerance, same matrix, same preconditioner).
-    const double decades = info.residual > 0 ? -std::log10(info.residual) : 0;
+    const double decades =
+      residual > 0 && rate_start_residual > 0 ? std::log10(rate_start_residual / residual) : 0;
     if (decades >= min_rate_decades)
       {
-        const double rate = info.iterations / decades;
+        const double rate = (info.iterations - rate_start_step) / decades;
         if (fresh || reference_rate == 0)
           reference_rate = std::max(reference_rate, rate);
         else if (rate > rebuild_growth * reference_rate)

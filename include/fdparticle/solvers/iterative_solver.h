@@ -34,8 +34,11 @@ namespace fdparticle
    * Each solve first tries cheap_iterations FGMRES iterations with the cheap form of the
    * preconditioner (no inner solve, BlockPreconditioner::inner_solve off) and, if they do
    * not reach the tolerance, continues from there with the inner solve (as ASPECT's
-   * Stokes solver does). A preconditioner whose cheap form failed once is used with the
-   * inner solve until it is rebuilt.
+   * Stokes solver does). When the cheap form fails with a preconditioner built for an
+   * earlier operator, the preconditioner is rebuilt for this one and the cheap form tried
+   * once more from where it stopped; the rate of the solve counts from there. A
+   * preconditioner whose cheap form failed on its own operator is used with the inner
+   * solve until it is rebuilt.
    */
   class IterativeSolver : public LinearSolver
   {
