@@ -165,8 +165,8 @@ namespace fdparticle
     unsigned int rate_start_step     = 0;
     double       rate_start_residual = rhs_norm;
     // The cheap form; when it misses the tolerance with a preconditioner built for an
-    // earlier operator, once more with one built for this operator (a cheap solve costs a
-    // few times the build; the inner solve behind a drifted preconditioner costs tens).
+    // earlier operator, once more with one built for this operator: a build costs about
+    // a cheap solve, the inner solve behind a drifted preconditioner many (doc/scaling.md).
     while (!converged && cheap_iterations > 0 && !cheap_failed)
       {
         SolverControl control(cheap_iterations, tolerance * rhs_norm, false, false);
