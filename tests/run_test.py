@@ -144,6 +144,9 @@ def run(executable, args, ranks, cwd):
     cmd = [executable] + args
     if ranks > 1:
         cmd = ["bash", MPIRUN, str(ranks)] + cmd
+    else:
+        # A run without mpirun starts no Open MPI daemon (it never spawns processes).
+        env["OMPI_MCA_ess_singleton_isolated"] = "1"
     print("running:", " ".join(cmd), flush=True)
     return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
 
