@@ -163,6 +163,8 @@ namespace fdparticle
     double       residual  = 0;
     // The iterations and the residual from which the current preconditioner's rate counts.
     unsigned int rate_start_step     = 0;
+    // The iterations after which a reused preconditioner's cheap form missed (0: it did not).
+    unsigned int missed_after = 0;
     double       rate_start_residual = rhs_norm;
     // The cheap form; when it misses the tolerance with a preconditioner built for an
     // earlier operator, once more with one built for this operator: a build costs about
@@ -187,6 +189,7 @@ namespace fdparticle
         residual = control.last_value();
         if (cheap_failed && !fresh)
           {
+            missed_after = steps;
             count();
             rebuild();
             inner_before = preconditioner.inner_iterations();
@@ -227,6 +230,9 @@ namespace fdparticle
                 << tolerance << "; cut-cell patch " << preconditioner.patch_size()
                 << " unknowns, factored in " << preconditioner.patch_memory() / 1e6
                 << " MB (largest rank); "
+                << (missed_after > 0 ? "reused preconditioner missed after " +
+                                         std::to_string(missed_after) + " iterations, " :
+                                       std::string())
                 << (rebuilt ? "preconditioner built in " +
                                 std::to_string(preconditioner.setup_time()) + " s (patch " +
                                 std::to_string(preconditioner.patch_setup_time()) + " s), " :
