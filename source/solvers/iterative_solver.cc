@@ -224,10 +224,15 @@ namespace fdparticle
     info.residual         = rhs_norm > 0 ? residual / rhs_norm : 0;
     count();
     info.inner_iterations = inner;
+    // Collective: counted on every rank before rank 0 prints.
+    const types::global_dof_index velocity_nonzeros =
+      verbose ? system.velocity_block_nonzeros() : 0;
     if (verbose && Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
       std::cout << "  iterative solver: " << info.iterations << " FGMRES iterations ("
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "
-                << tolerance << "; cut-cell patch " << preconditioner.patch_size()
+                << tolerance << "; Newton matrix " << system.A.n_nonzero_elements()
+                << " non-zeros, " << velocity_nonzeros << " of them in the velocity block"
+                << "; cut-cell patch " << preconditioner.patch_size()
                 << " unknowns, factored in " << preconditioner.patch_memory() / 1e6
                 << " MB (largest rank); "
                 << (missed_after > 0 ? "reused preconditioner missed after " +

@@ -69,6 +69,22 @@ namespace fdparticle
     return Utilities::MPI::min(same ? 1 : 0, sparsity.get_mpi_communicator()) == 1;
   }
 
+  types::global_dof_index NewtonSystem::velocity_block_nonzeros() const
+  {
+    const Epetra_CrsGraph &graph = A.trilinos_matrix().Graph();
+    types::global_dof_index count = 0;
+    for (int r = 0; r < graph.NumMyRows(); ++r)
+      if (blocks.locate(graph.GRID64(r)).first == Blocks::velocity)
+        {
+          int  length;
+          int *columns;
+          graph.ExtractMyRowView(r, length, columns);
+          for (int k = 0; k < length; ++k)
+            count += blocks.locate(graph.GCID64(columns[k])).first == Blocks::velocity;
+        }
+    return Utilities::MPI::sum(count, r_fe.get_mpi_communicator());
+  }
+
   IndexSet NewtonSystem::particle_unknowns(const unsigned int m, const MPI_Comm comm)
   {
     IndexSet unknowns(m);

@@ -50,6 +50,10 @@ namespace fdparticle
     /// columns in every row). Collective.
     bool has_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const;
 
+    /// The entries of A between velocity DoFs (rows and columns), over all ranks: the
+    /// part of A a matrix-free velocity operator could leave out. Collective.
+    types::global_dof_index velocity_block_nonzeros() const;
+
     /// Lay out the system for a step: A gets the pattern (rebuilt only if new_pattern, else
     /// zeroed), the residual the layout of the owned and relevant DoFs, B and Cᵀ the pattern
     /// border (n × m, see border_pattern), D and r_p the size m of the particle unknowns.
