@@ -16,17 +16,19 @@ namespace fdparticle
     prm.enter_subsection("Solver");
     {
       prm.declare_entry("Max linear iterations", "500", Patterns::Integer(1),
-                        "Iterative solver: FGMRES iterations after which a linear solve "
+                        "Iterative solver: outer Krylov iterations after which a linear solve "
                         "counts as failed (the step is then retried with a smaller time step).");
       prm.declare_entry("Krylov basis size", "100", Patterns::Integer(2),
-                        "Iterative solver: FGMRES restarts after this many iterations. Each basis "
-                        "vector costs two vectors of the system's size, allocated only when used; "
+                        "Iterative solver: GMRES and FGMRES restart after this many iterations. "
+                        "Each basis vector costs one vector of the system's size with the cheap "
+                        "preconditioner (GMRES), two with the inner solve (FGMRES), allocated only "
+                        "when used; "
                         "a restart loses what the basis knew and costs iterations, so raise it "
                         "together with Cheap iterations (doc/scaling.md).");
       prm.declare_entry("Cheap iterations", "100", Patterns::Integer(0),
-                        "Iterative solver: FGMRES iterations tried first with the cheap "
+                        "Iterative solver: GMRES iterations tried first with the cheap "
                         "preconditioner (no inner solve, doc/method.md §8); if they miss the "
-                        "tolerance the solve continues with the inner solve. 0: always the inner "
+                        "tolerance the solve continues with the inner solve (FGMRES). 0: always the inner "
                         "solve. Raise it, with Krylov basis size, when solves fall back, as for "
                         "close pairs (doc/scaling.md).");
       prm.declare_entry("Inner tolerance", "1e-3", Patterns::Double(0, 1),
@@ -37,7 +39,7 @@ namespace fdparticle
                         "Iterative solver: after each preconditioner application, solve exactly "
                         "(MUMPS, all ranks) for the cells inside the particles, the nearly "
                         "covered cut cells and this many rings around them (doc/method.md §8). 1 "
-                        "keeps the FGMRES iterations from growing with refinement. -1: no patch, "
+                        "keeps the outer iterations from growing with refinement. -1: no patch, "
                         "for suspensions short of memory (doc/scaling.md).");
       prm.declare_entry("Cut cell patch memory", "4", Patterns::Double(0),
                         "Iterative solver: largest memory, in GB per rank, that the factorization "
@@ -60,14 +62,14 @@ namespace fdparticle
                         "large mesh as few Subdivisions and Global refinements (doc/scaling.md). "
                         "amg: one ML V-cycle on the assembled velocity matrix.");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),
-                        "Print, for every linear solve, the FGMRES and inner iterations, the "
+                        "Print, for every linear solve, the outer and inner iterations, the "
                         "residual reached, the cut-cell patch's size and memory, and rank 0's "
                         "wall times of building the preconditioner and of iterating, each split "
                         "into its main parts.");
       prm.declare_entry("Reuse preconditioner", "true", Patterns::Bool(),
                         "Iterative solver: keep the preconditioner for new Jacobians (Newton "
                         "iterations, time steps on the same mesh) until a solve needs more than "
-                        "1.5 times the FGMRES iterations per tenfold residual reduction of the "
+                        "1.5 times the outer iterations per tenfold residual reduction of the "
                         "slowest solve with its own Jacobian (doc/method.md §8). false: a new "
                         "preconditioner for every Jacobian.");
     }
@@ -158,6 +160,7 @@ namespace fdparticle
 
     const double rhs_norm = rhs.l2_norm();
     using FGMRES          = SolverFGMRES<BorderedOperator::BlockVector>;
+    using GMRES           = SolverGMRES<BorderedOperator::BlockVector>;
     bool         converged = rhs_norm == 0;
     unsigned int steps     = 0;
     double       residual  = 0;
@@ -172,16 +175,20 @@ namespace fdparticle
     while (!converged && cheap_iterations > 0 && !cheap_failed)
       {
         SolverControl control(cheap_iterations, tolerance * rhs_norm, false, false);
-        FGMRES        fgmres(control, FGMRES::AdditionalData(basis_size));
+        // The cheap form is a fixed linear operator, so GMRES preconditioned from the
+        // right builds FGMRES's Krylov space and iterates with half its vectors: it keeps
+        // the basis and applies the preconditioner once more to the combination at the end
+        // of a cycle, where FGMRES keeps each basis vector's preconditioned image.
+        GMRES gmres(control, GMRES::AdditionalData(basis_size + 2, true));
         preconditioner.inner_solve = false;
         try
           {
-            fgmres.solve(*op, solution, rhs, preconditioner);
+            gmres.solve(*op, solution, rhs, preconditioner);
             converged = true;
           }
         catch (const SolverControl::NoConvergence &)
           {
-            // FGMRES leaves its best iterate in the solution; the next form goes on from it.
+            // GMRES leaves its best iterate in the solution; the next form goes on from it.
             cheap_failed = true;
           }
         preconditioner.inner_solve = true;
@@ -228,7 +235,7 @@ namespace fdparticle
     const types::global_dof_index velocity_nonzeros =
       verbose ? system.velocity_block_nonzeros() : 0;
     if (verbose && Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
-      std::cout << "  iterative solver: " << info.iterations << " FGMRES iterations ("
+      std::cout << "  iterative solver: " << info.iterations << " outer iterations ("
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "
                 << tolerance << "; Newton matrix " << system.A.n_nonzero_elements()
                 << " non-zeros, " << velocity_nonzeros << " of them in the velocity block"

@@ -18,23 +18,24 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * The Newton system solved by FGMRES on the whole bordered matrix [A B; C D], with the
+   * The Newton system solved by GMRES and FGMRES on the whole bordered matrix [A B; C D], with the
    * BlockPreconditioner (doc/method.md §8, iterative solve). Memory and work per
    * iteration are linear in the number of unknowns; the particle unknowns are a small
    * block of the Krylov vectors, not eliminated.
    *
    * The preconditioner is built with the first solve after operator_changed(), and kept
    * for later operators while it still converges about as fast as on the operator it was
-   * built for: its reference is the largest number of FGMRES iterations per decade of
+   * built for: its reference is the largest number of outer iterations per decade of
    * residual reduction among the solves with that operator; a solve with a later operator
    * that needs more than rebuild_growth times as many marks it as drifted, and it is
    * rebuilt at the next operator_changed(). It is never rebuilt for the operator it was
    * built for (Newton with a reused Jacobian), which it cannot approximate better.
    *
-   * Each solve first tries cheap_iterations FGMRES iterations with the cheap form of the
-   * preconditioner (no inner solve, BlockPreconditioner::inner_solve off) and, if they do
-   * not reach the tolerance, continues from there with the inner solve (as ASPECT's
-   * Stokes solver does). When the cheap form fails with a preconditioner built for an
+   * Each solve first tries cheap_iterations GMRES iterations, preconditioned from the
+   * right, with the cheap form of the preconditioner (no inner solve,
+   * BlockPreconditioner::inner_solve off; a fixed linear operator, so GMRES needs one
+   * vector per iteration where FGMRES keeps two) and, if they do not reach the tolerance,
+   * continues from there by FGMRES with the inner solve (as ASPECT's Stokes solver does). When the cheap form fails with a preconditioner built for an
    * earlier operator, the preconditioner is rebuilt for this one and the cheap form tried
    * once more from where it stopped; the rate of the solve counts from there. A
    * preconditioner whose cheap form failed on its own operator is used with the inner
@@ -80,7 +81,7 @@ namespace fdparticle
     bool                              fresh = false;
     /// A solve with a later operator converged too slowly: rebuild with the next operator.
     bool                              drifted = false;
-    /// FGMRES iterations per decade of residual reduction: the largest among the solves
+    /// Outer iterations per decade of residual reduction: the largest among the solves
     /// with the operator the preconditioner was built for (0: none measured yet).
     double                            reference_rate = 0;
     /// Whether the cheap form of the current preconditioner failed to converge.
