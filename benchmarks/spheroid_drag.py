@@ -6,7 +6,7 @@ in the centre of the periodic unit cube of prm/validation/array3d.prm, its axis 
 body force f = (1, 0, 0) ("along"), across it ("across") or turned by 30 degrees from it
 about z ("tilted": the flow gains a y-component, compared too); steady Stokes in one BDF1 step of dt = 100 (mu = 1),
 level-set cut cells, 4^3 base cells refined around the particle to 2b/h = 6.4 and 12.8
-(r = 4: 6.4 only; 12.8 would take about 1.5 M unknowns).
+(r = 4: 6.4, and 9.6 and 12.8 on 6^3 and 8^3 base cells, 1.1 M unknowns).
 F = fx, the force the particle holds (doc/method.md §9: f L^3 less the step's
 rho U L^3/dt), and U = mean_vx over the cell, as in doc/validation.md section 1.
 
@@ -22,10 +22,11 @@ and 6 pi mu a for the sphere (r = 1, the control of the periodic correction); ti
 mobility M = n n^T / R_along + (I - n n^T) / R_across (n the axis) gives U = M F.
 
 Writes doc/shapes_drag.csv (each row with the date, commit and machine) and prints the
-table of doc/shapes.md. About 15 minutes on 2 ranks; the finest runs take 6.4 GB a rank.
+table of doc/shapes.md. About 40 minutes on 2 ranks; the finest runs take 11.3 GB a rank
+(nearly all of a 24 GB machine: run it alone).
 
 Usage (regenerate):  /usr/bin/python3 benchmarks/spheroid_drag.py [--ranks 2]
-    [--work DIR] [--executable PATH] [--reuse] [--cases 1-along-3,2-along-4,...]
+    [--work DIR] [--executable PATH] [--reuse] [--cases 1-along-3-4,2-along-4-4,...]
 """
 import argparse
 import csv
@@ -41,11 +42,14 @@ from importlib.machinery import SourceFileLoader
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HASIMOTO = 2.837297  # 1.7601 (4 pi / 3)^(1/3): the periodic Stokeslet's self-term
 A = 0.1
-# (axis ratio, direction, particle refinement levels): 2b/h = 2 (A/r) 4 2^levels.
-CASES = [(1, "along", 3), (1, "along", 4),
-         (2, "along", 4), (2, "across", 4), (2, "tilted", 4),
-         (2, "along", 5), (2, "across", 5), (2, "tilted", 5),
-         (4, "along", 5), (4, "across", 5)]
+# (axis ratio, direction, particle refinement levels, base cells per edge):
+# 2b/h = 2 (A/r) base 2^levels.
+CASES = [(1, "along", 3, 4), (1, "along", 4, 4),
+         (2, "along", 4, 4), (2, "across", 4, 4), (2, "tilted", 4, 4),
+         (2, "along", 5, 4), (2, "across", 5, 4), (2, "tilted", 5, 4),
+         (4, "along", 5, 4), (4, "across", 5, 4),
+         (4, "along", 5, 6), (4, "across", 5, 6),
+         (4, "along", 5, 8), (4, "across", 5, 8)]
 TILT = 30  # degrees about z, "tilted": the axis in the x-y plane
 
 # The scene: prm/validation/array3d.prm (the periodic unit cube, f = (1, 0, 0), steady
@@ -98,31 +102,43 @@ def main():
     p.add_argument("--patch-memory", default="12",
                    help="Solver/Cut cell patch memory, GB a rank (the finest runs' patch "
                         "needs 7 GB on one rank; without it they take many more iterations)")
-    p.add_argument("--cases", help="RATIO-DIRECTION-LEVELS,... (default: all)")
+    p.add_argument("--cases", help="RATIO-DIRECTION-LEVELS-BASE,... (default: all)")
     args = p.parse_args()
     cases = CASES
     if args.cases:
-        cases = [(int(r), d, int(l)) for r, d, l in (c.split("-") for c in args.cases.split(","))]
+        cases = [(int(r), d, int(l), int(n)) for r, d, l, n in (c.split("-") for c in args.cases.split(","))]
     os.makedirs(args.work, exist_ok=True)
     commit = subprocess.run(["git", "-C", TOP, "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip()
     stamp = [datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%MZ"), commit,
              socket.gethostname()]
-    header = ["axis_ratio", "direction", "levels", "b_over_h", "dofs", "ranks", "wall_seconds",
+    header = ["axis_ratio", "direction", "levels", "base_cells", "b_over_h", "dofs", "ranks", "wall_seconds",
               "peak_mb_per_rank", "fx", "mean_vx", "mean_vy", "resistance_periodic",
               "resistance_isolated", "analytic", "error_percent", "cross_error_percent_of_mxx",
               "date", "commit", "machine"]
+    # A reused run keeps the date, commit and machine it was measured with.
+    csv_path = os.path.join(TOP, "doc", "shapes_drag.csv")
+    measured = {}
+    if args.reuse and os.path.exists(csv_path):
+        for row in read_rows(csv_path):
+            key = (row["axis_ratio"], row["direction"], row["levels"], row.get("base_cells", "4"))
+            measured[key] = [row["date"], row["commit"], row["machine"]]
     rows = []
-    for ratio, direction, levels in cases:
-        name = f"r{ratio}-{direction}-l{levels}"
+    for ratio, direction, levels, base in cases:
+        # The names of the 4^3 runs predate the base's own field.
+        name = f"r{ratio}-{direction}-l{levels}" + (f"-n{base}" if base != 4 else "")
         out = os.path.join(args.work, name)
         prm = os.path.join(args.work, name + ".prm")
         timing = os.path.join(args.work, name + ".time")
-        if not (args.reuse and os.path.exists(os.path.join(out, "particles.csv"))):
+        when = stamp
+        if args.reuse and os.path.exists(os.path.join(out, "particles.csv")):
+            when = measured.get((str(ratio), direction, str(levels), str(base)), stamp)
+        else:
             with open(SCENE) as f:
                 text = STUDY.apply_overrides(f.read(), {
                     "Particles/Particles": f"0.5, 0.5, 0.5 : {shape(ratio, direction)} : 1 : fixed",
                     "Refinement/Particle refinement levels": str(levels),
+                    "Geometry/Subdivisions": f"{base}, {base}, {base}",
                     "Solver/Linear solver": "iterative",
                     "Solver/Cut cell patch memory": args.patch_memory,
                     "Output/Directory": out, "Output/VTU interval": "0"})
@@ -150,20 +166,20 @@ def main():
         reference_xx, reference_yx = mobility(ratio, direction)
         # M_yx against M_xx: the neglected image terms are a fraction of M_xx, not of M_yx.
         cross = f"{100 * (m_yx - reference_yx) / reference_xx:+.2f}" if reference_yx else ""
-        rows.append([ratio, direction, levels, f"{(A / ratio) * 4 * 2**levels:.2f}",
+        rows.append([ratio, direction, levels, base, f"{(A / ratio) * base * 2**levels:.2f}",
                      stats["dofs"], ranks, seconds, f"{int(peak_kb) / 1024:.0f}",
                      f"{fx:.6f}", f"{u:.6g}", f"{v:.6g}", f"{fx / u:.5f}", f"{1 / m_xx:.5f}",
                      f"{1 / reference_xx:.5f}", f"{100 * (reference_xx / m_xx - 1):+.2f}",
-                     cross] + stamp)
-        print(" ".join(str(x) for x in rows[-1][:16]), flush=True)
-    with open(os.path.join(TOP, "doc", "shapes_drag.csv"), "w", newline="") as f:
+                     cross] + when)
+        print(" ".join(str(x) for x in rows[-1][:17]), flush=True)
+    with open(csv_path, "w", newline="") as f:
         csv.writer(f).writerows([header] + rows)
     print("\n| r = a/b | motion | 2b/h | unknowns | F/(μU) periodic | isolated | "
           "Oberbeck / Chwang & Wu | error % | M_yx error, % of M_xx | "
           "ranks | s | MB a rank |\n|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print(f"| {r[0]} | {r[1]} | {2 * float(r[3]):.1f} | {r[4]} | {r[11]} | {r[12]} | "
-              f"{r[13]} | {r[14]} | {r[15]} | {r[5]} | {float(r[6]):.0f} | {r[7]} |")
+        print(f"| {r[0]} | {r[1]} | {2 * float(r[4]):.1f} | {r[5]} | {r[12]} | {r[13]} | "
+              f"{r[14]} | {r[15]} | {r[16]} | {r[6]} | {float(r[7]):.0f} | {r[8]} |")
 
 
 if __name__ == "__main__":
