@@ -166,9 +166,9 @@ namespace fdparticle
     double       residual  = 0;
     // The iterations and the residual from which the current preconditioner's rate counts.
     unsigned int rate_start_step     = 0;
+    double       rate_start_residual = rhs_norm;
     // The iterations after which a reused preconditioner's cheap form missed (0: it did not).
     unsigned int missed_after = 0;
-    double       rate_start_residual = rhs_norm;
     // The cheap form; when it misses the tolerance with a preconditioner built for an
     // earlier operator, once more with one built for this operator: a build costs about
     // a cheap solve, the inner solve behind a drifted preconditioner many (doc/scaling.md).
@@ -179,6 +179,7 @@ namespace fdparticle
         // right builds FGMRES's Krylov space and iterates with half its vectors: it keeps
         // the basis and applies the preconditioner once more to the combination at the end
         // of a cycle, where FGMRES keeps each basis vector's preconditioned image.
+        // (deal.II's GMRES counts two work vectors beyond the basis.)
         GMRES gmres(control, GMRES::AdditionalData(basis_size + 2, true));
         preconditioner.inner_solve = false;
         try

@@ -18,8 +18,8 @@ namespace fdparticle
   using namespace dealii;
 
   /**
-   * The Newton system solved by GMRES and FGMRES on the whole bordered matrix [A B; C D], with the
-   * BlockPreconditioner (doc/method.md §8, iterative solve). Memory and work per
+   * The Newton system solved by GMRES and FGMRES on the whole bordered matrix [A B; C D],
+   * with the BlockPreconditioner (doc/method.md §8, iterative solve). Memory and work per
    * iteration are linear in the number of unknowns; the particle unknowns are a small
    * block of the Krylov vectors, not eliminated.
    *
@@ -35,8 +35,9 @@ namespace fdparticle
    * right, with the cheap form of the preconditioner (no inner solve,
    * BlockPreconditioner::inner_solve off; a fixed linear operator, so GMRES needs one
    * vector per iteration where FGMRES keeps two) and, if they do not reach the tolerance,
-   * continues from there by FGMRES with the inner solve (as ASPECT's Stokes solver does). When the cheap form fails with a preconditioner built for an
-   * earlier operator, the preconditioner is rebuilt for this one and the cheap form tried
+   * continues from there by FGMRES with the inner solve (as ASPECT's Stokes solver does).
+   * When the cheap form fails with a preconditioner built for an earlier operator, the
+   * preconditioner is rebuilt for this one and the cheap form tried
    * once more from where it stopped; the rate of the solve counts from there. A
    * preconditioner whose cheap form failed on its own operator is used with the inner
    * solve until it is rebuilt.
