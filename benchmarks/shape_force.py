@@ -13,7 +13,7 @@ turn. S is taken over t >= 1 (the start-up decays on the viscous time L^2/nu = 1
 S_smooth is S of the ellipse's force fitted by a Fourier series in the angle (up to the
 fourth harmonic of 2 theta): the part of S the turning itself makes.
 
-Writes doc/shapes_force.csv (with date and revision), doc/shapes_force.png, and prints a
+Writes doc/shapes_force.csv (each row with the date and the build of its run), doc/shapes_force.png, and prints a
 Markdown table; the studies go to benchmarks/work/shape_force/ (--reuse keeps finished
 runs). Run alone (2D: about 10 minutes on one rank; --dims 2,3 adds the 3D study, about
 an hour):
@@ -106,6 +106,17 @@ def read_history(run_dir, dim):
     return t, force, torque
 
 
+def provenance(run_dir):
+    """The build that wrote the run (the first line of its parameters.prm) and when its
+    output was last written: a reused run keeps both."""
+    out = os.path.join(run_dir, "output")
+    with open(os.path.join(out, "parameters.prm")) as f:
+        revision = f.readline().split()[4]
+    when = os.path.getmtime(os.path.join(out, "particles.csv"))
+    return (datetime.datetime.fromtimestamp(when, datetime.timezone.utc).strftime("%Y-%m-%dT%H:%MZ"),
+            revision)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--dims", default="2")
@@ -113,9 +124,6 @@ def main():
     parser.add_argument("--executable", default=os.path.join(TOP, "build", "fdparticle"))
     parser.add_argument("--work", default=os.path.join(TOP, "benchmarks", "work", "shape_force"))
     opts = parser.parse_args()
-    revision = subprocess.run([opts.executable, "--version"], capture_output=True,
-                              text=True).stdout.split()[1]
-    date = datetime.datetime.utcnow().strftime("%Y-%m-%dT%H:%MZ")
     os.makedirs(opts.work, exist_ok=True)
     rows, histories = [], {}
     for dim in [int(d) for d in opts.dims.split(",")]:
@@ -154,7 +162,8 @@ def main():
                     row["S_smooth"] = f"{smoothness(t[keep], fit):.3g}"
                 else:
                     row["S_smooth"] = "0"
-                row.update({"date": date, "revision": revision})
+                when, built = provenance(run_dir)
+                row.update({"date": when, "revision": built})
                 rows.append(row)
                 histories[(dim, name, level)] = (t, force)
     out = os.path.join(TOP, "doc", "shapes_force.csv")
