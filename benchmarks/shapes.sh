@@ -5,8 +5,8 @@
 #     step, and in a box twice as large with the same cells near the ellipse; the rate at the
 #     ellipse's angle, the fastest rate and the time to turn against Jeffery's. Writes
 #     doc/shapes_jeffery_2d.csv and doc/shapes_jeffery_2d.png.
-#  2. What a shape costs (3D, tests/ellipsoid_equal_axes_3d.prm with Navier-Stokes, 4
-#     steps): the sphere, the same sphere as an ellipsoid of equal semi-axes (the same
+#  2. What a shape costs (3D, tests/ellipsoid_equal_axes_3d.prm on 4 x 6 x 4 base cells
+#     with the default level-set order and Navier-Stokes, 4 steps): the sphere, the same sphere as an ellipsoid of equal semi-axes (the same
 #     cells: the cost of the general shape's geometry) and a prolate spheroid
 #     0.3 x 0.15 x 0.15 turned by 30 degrees (the same d/h across its small axes); Jacobian
 #     assemblies, run time and peak memory. Writes doc/shapes_cost_3d.csv.
@@ -58,7 +58,8 @@ for case in sphere equal spheroid; do
     equal)    shape="ellipsoid 0.15, 0.15, 0.15, 1, 2, 3, 30" ;;
     spheroid) shape="ellipsoid 0.3, 0.15, 0.15, 1, 2, 3, 30" ;;
   esac
-  sed -e '/^# test-/d' -e '/set Convection = false/d' \
+  sed -e '/^# test-/d' -e '/set Convection = false/d' -e '/set Level set order/d' \
+      -e "s|Subdivisions = 3, 4, 3|Subdivisions = 4, 6, 4|" \
       -e "s|0.05, 0.3, 0.02 : 0.15 :|0.05, 0.3, 0.02 : $shape :|" \
       -e "s|End time = 0.1|End time = 0.2|" "$scene" > "$work/cost-$case.prm"
   printf '\nsubsection Output\n  set Directory = %s\nend\n' "$work/cost-$case" >> "$work/cost-$case.prm"

@@ -3,6 +3,7 @@
 #   bash scripts/run-tests.sh            Release build, the whole suite
 #   bash scripts/run-tests.sh --debug    Debug build (deal.II's assertions on), the tests
 #                                        in debug_tests below
+#   ... --build-only                     build what the tests need, run none
 # Further arguments go to ctest.
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
@@ -16,17 +17,28 @@ debug_units='assembly_terms direct_solver newton_solver cut_cell_quadrature para
 debug_tests="^unit/(${debug_units// /|})\$"
 debug_tests+='|^bad_|^(regression_sediment_2d|regression_cavity_2d|recovery_2d|recovery_exhausted_2d'
 debug_tests+='|stability_tiny_dt_2d|validation_array_2d|hydrostatic_2d_zero|mpi_adaptive_2d)$'
-if [ "${1:-}" = "--debug" ]; then
+debug=0
+build_only=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --debug) debug=1 ;;
+    --build-only) build_only=1 ;;
+    *) break ;;
+  esac
   shift
+done
+if [ $debug = 1 ]; then
   # Only what these tests run: the program and their unit tests, without debug
   # information (the assertions are what this build is for; it compiles two fifths faster).
   targets=(-DFDPARTICLE_DEBUG_INFO=OFF fdparticle)
   for unit in $debug_units; do targets+=("unit_$unit"); done
   bash "$top/scripts/build.sh" --debug "${targets[@]}"
+  [ $build_only = 1 ] && exit 0
   cd "$top/build-debug"
   ctest --output-on-failure -j "$(nproc)" -R "$debug_tests" "$@"
 else
   bash "$top/scripts/build.sh"
+  [ $build_only = 1 ] && exit 0
   cd "$top/build"
   ctest --output-on-failure -j "$(nproc)" "$@"
 fi

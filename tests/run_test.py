@@ -9,6 +9,9 @@ over both runs (positions: the box size); FLOOR defaults to 1e-9.
   # test-ranks: 1, 2               run on each number of MPI ranks (default 1); with several,
                                    particles.csv must agree between them
   # test-rank-tolerance: REL [FLOOR]  (default 1e-8)
+  # test-rank-end-time: T          the runs on more ranks than the first end at time T and
+                                   are compared with the first run's rows up to T; the
+                                   first run alone is checked (test-check, test-compare)
   # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
                                    in one 'fdparticle: error' line, end every rank without
                                    aborting MPI, and leave no output directory behind
@@ -90,12 +93,16 @@ def read_csv(path):
     return rows[0], rows[1:]
 
 
-def compare_csv(actual, expected, rel, floor, box=None, ignored=()):
+def compare_csv(actual, expected, rel, floor, box=None, ignored=(), until=None):
     """Mismatches (empty: the files agree) of two CSV files, value by value, by the rule of
     testlib: |a - b| <= rel * max(|a|, |b|) + floor * S, S the scale of the column's kind
-    over both files (positions: box, when given)."""
+    over both files (positions: box, when given). With until, the rows of both files up to
+    that time."""
     ha, ra = read_csv(actual)
     he, re_ = read_csv(expected)
+    if until is not None:
+        ra = [r for r in ra if float(r[ha.index("time")]) <= until * (1 + 1e-12)]
+        re_ = [r for r in re_ if float(r[he.index("time")]) <= until * (1 + 1e-12)]
     # Columns added to a table later do not break stored output; missing ones do.
     missing = [h for h in he if h not in ha]
     if missing:
@@ -408,13 +415,17 @@ def main():
     failures = []
 
     ranks_list = [int(r) for r in d.get("test-ranks", "1").split(",")]
+    rank_end_time = float(d["test-rank-end-time"]) if "test-rank-end-time" in d else None
     outputs = []
     for ranks in ranks_list:
         out_dir = os.path.join(opts.work, f"ranks-{ranks}")
         prm_copy = os.path.join(opts.work, f"{name}-ranks-{ranks}.prm")
+        shortened = rank_end_time is not None and ranks != ranks_list[0]
         with open(prm_copy, "w") as f:
             # A later 'set' overrides an earlier one: redirect the output.
             f.write(text + f"\nsubsection Output\n  set Directory = {out_dir}\nend\n")
+            if shortened:
+                f.write(f"subsection Time\n  set End time = {rank_end_time!r}\nend\n")
         args = d["test-args"].replace("@TESTS@", HERE).split() if "test-args" in d else [prm_copy]
         result = run(opts.executable, args, ranks, opts.work)
         sys.stdout.write(result.stdout[-4000:])
@@ -444,6 +455,8 @@ def main():
             on_ranks, expected = d["test-expect-output"].split(None, 1)
             if int(on_ranks) == ranks and expected not in result.stdout + result.stderr:
                 failures.append(f"the output on {ranks} rank(s) does not contain {expected!r}")
+        if shortened:
+            continue
 
         if "test-compare" in d:
             rel, floor = tolerances(d.get("test-tolerance"), "1e-6 1e-10")
@@ -512,7 +525,7 @@ def main():
         base = os.path.join(outputs[0], "particles.csv")
         for other in outputs[1:]:
             for p in compare_csv(os.path.join(other, "particles.csv"), base, rel, floor,
-                                 run_box(outputs[0])):
+                                 run_box(outputs[0]), until=rank_end_time):
                 failures.append(f"{os.path.basename(other)} vs {os.path.basename(outputs[0])}: {p}")
 
     for f in failures[:30]:
