@@ -685,10 +685,33 @@ namespace
         const Particle<dim> A = make(Point<dim>() + reach * direction, a), B = make(Point<dim>(), b);
         const auto          c = ContactGeometry<dim>::pair(A, B, reach * direction);
         const auto   xa = samples(A, a), xb = samples(B, b);
-        double       sampled = 1e300;
+        // The smallest distance of the samples, over all pairs: raw arrays, as a Debug
+        // build checks every index of a Point or a container.
+        std::vector<double> qb_storage(dim * xb.size());
+        for (unsigned int j = 0; j < xb.size(); ++j)
+          for (unsigned int d = 0; d < dim; ++d)
+            qb_storage[dim * j + d] = xb[j][d];
+        const double *     qb = qb_storage.data();
+        const unsigned int nb = xb.size();
+        double             sampled_square = 1e300;
         for (const auto &p : xa)
-          for (const auto &q : xb)
-            sampled = std::min(sampled, p.distance(q));
+          {
+            double pa[dim];
+            for (unsigned int d = 0; d < dim; ++d)
+              pa[d] = p[d];
+            for (unsigned int j = 0; j < nb; ++j)
+              {
+                double square = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const double e = pa[d] - qb[dim * j + d];
+                    square += e * e;
+                  }
+                if (square < sampled_square)
+                  sampled_square = square;
+              }
+          }
+        const double sampled = std::sqrt(sampled_square);
         if (trial >= 10) // deep overlap: centres 0.1 apart
           {
             wrong_gap += !(c.gap < 0);
