@@ -11,7 +11,8 @@ over both runs (positions: the box size); FLOOR defaults to 1e-9.
   # test-rank-tolerance: REL [FLOOR]  (default 1e-8)
   # test-rank-end-time: T          the runs on more ranks than the first end at time T and
                                    are compared with the first run's rows up to T; the
-                                   first run alone is checked (test-check, test-compare)
+                                   first run alone is checked and varied (test-check,
+                                   test-compare, test-variant, test-solvers, ...)
   # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
                                    in one 'fdparticle: error' line, end every rank without
                                    aborting MPI, and leave no output directory behind
