@@ -13,9 +13,9 @@ turn. S is taken over t >= 1 (the start-up decays on the viscous time L^2/nu = 1
 S_smooth is S of the ellipse's force fitted by a Fourier series in the angle (up to the
 fourth harmonic of 2 theta): the part of S the turning itself makes.
 
-Writes doc/shapes_force.csv (each row with the date and the build of its run), doc/shapes_force.png, and prints a
-Markdown table; the studies go to benchmarks/work/shape_force/ (--reuse keeps finished
-runs). Run alone (2D: about 10 minutes on one rank; --dims 2,3 adds the 3D study, about
+Writes doc/shapes_force.csv (each row with the date and the build of its run),
+doc/shapes_force.png, and prints a Markdown table; the studies go to
+benchmarks/work/shape_force/ (--reuse keeps finished runs). Run alone (2D: about 10 minutes on one rank; --dims 2,3 adds the 3D study, about
 an hour):
     /usr/bin/python3 benchmarks/shape_force.py [--dims 2] [--reuse]
 """

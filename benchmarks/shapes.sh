@@ -6,10 +6,11 @@
 #     ellipse's angle, the fastest rate and the time to turn against Jeffery's. Writes
 #     doc/shapes_jeffery_2d.csv and doc/shapes_jeffery_2d.png.
 #  2. What a shape costs (3D, tests/ellipsoid_equal_axes_3d.prm on 4 x 6 x 4 base cells
-#     with the default level-set order and Navier-Stokes, 4 steps): the sphere, the same sphere as an ellipsoid of equal semi-axes (the same
-#     cells: the cost of the general shape's geometry) and a prolate spheroid
-#     0.3 x 0.15 x 0.15 turned by 30 degrees (the same d/h across its small axes); Jacobian
-#     assemblies, run time and peak memory. Writes doc/shapes_cost_3d.csv.
+#     with the default level-set order and Navier-Stokes, 4 steps): the sphere, the same
+#     sphere as an ellipsoid of equal semi-axes (the same cells: the cost of the general
+#     shape's geometry) and a prolate spheroid 0.3 x 0.15 x 0.15 turned by 30 degrees (the
+#     same d/h across its small axes); Jacobian assemblies, run time and peak memory.
+#     Writes doc/shapes_cost_3d.csv.
 #  3. With BASELINE=PATH (an fdparticle built from a commit before the shapes), sphere
 #     scenes must not change or slow down: prm/sediment2d.prm and the sphere of 2., run by
 #     both executables; whether particles.csv agrees to the last digit, and the run times.
