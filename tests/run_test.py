@@ -12,7 +12,8 @@ over both runs (positions: the box size); FLOOR defaults to 1e-9.
   # test-rank-end-time: T          the runs on more ranks than the first end at time T and
                                    are compared with the first run's rows up to T; the
                                    first run alone is checked and varied (test-check,
-                                   test-compare, test-variant, test-solvers, ...)
+                                   test-compare, test-variant, ...), except that a
+                                   test-solvers run on such a rank count ends at T too
   # test-expect-error: TEXT        the run must fail (non-zero exit), print TEXT on stderr
                                    in one 'fdparticle: error' line, end every rank without
                                    aborting MPI, and leave no output directory behind
@@ -456,7 +457,13 @@ def main():
             on_ranks, expected = d["test-expect-output"].split(None, 1)
             if int(on_ranks) == ranks and expected not in result.stdout + result.stderr:
                 failures.append(f"the output on {ranks} rank(s) does not contain {expected!r}")
+        solver_ranks = d.get("test-solvers", "").split()[2:]
+        other_solver = "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks)
         if shortened:
+            if other_solver:
+                failures += check_other_solver(
+                    opts, text + f"\nsubsection Time\n  set End time = {rank_end_time!r}\nend\n",
+                    d, name, ranks, out_dir)
             continue
 
         if "test-compare" in d:
@@ -507,8 +514,7 @@ def main():
                                  compare_csv(os.path.join(v_dir, "particles.csv"),
                                              os.path.join(out_dir, "particles.csv"), rel, floor,
                                              run_box(out_dir), ignored)]
-        solver_ranks = d.get("test-solvers", "").split()[2:]
-        if "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks):
+        if other_solver:
             failures += check_other_solver(opts, text, d, name, ranks, out_dir)
         if "test-check" in d:
             script, *check_args = d["test-check"].split()

@@ -11,7 +11,8 @@ classification of each curve, whatever it is:
     'not in the asymptotic range: refine further');
   - an asymptotic curve has all of them, errors against its extrapolated value and a
     recommended run for at least one target.
-The same study with --jobs 2 must give the same QoIs, DoFs and classifications.
+The study of the two coarser levels with --jobs 2 must give the same runs (DoFs, steps,
+QoIs) as these runs of the full study.
 
 Usage: check_readme_study.py --tool tools/fdparticle-study --executable build/fdparticle --work DIR
 """
@@ -96,20 +97,18 @@ def main():
         path = os.path.join(out, png)
         check(os.path.isfile(path) and os.path.getsize(path) > 2000, f"{png} written")
 
-    # --jobs 2: the same results.
+    # --jobs 2 on the two coarser levels: the same runs as the full study's first four.
     out2 = os.path.join(args.work, "study-jobs2")
+    coarse = [o.replace("=0,1,2", "=0,1") for o in OPTIONS]
     begin = time.monotonic()
-    res2 = studylib.run_study(args, BASE, OPTIONS + ["--jobs", "2", "--work", os.path.join(args.work, "runs2")], out2)
+    res2 = studylib.run_study(args, BASE, coarse + ["--jobs", "2", "--work", os.path.join(args.work, "runs2")], out2)
     print(f"the study with --jobs 2 took {time.monotonic() - begin:.1f} s")
     if check(res2.returncode == 0, "the study with --jobs 2 exits with status 0"):
         rows2 = list(csv.DictReader(open(os.path.join(out2, "study.csv"))))
-        fits2 = list(csv.DictReader(open(os.path.join(out2, "fits.csv"))))
         keys = ("run", "group", "dofs", "steps", "qoi")
-        check([[r[k] for k in keys] for r in rows] == [[r[k] for k in keys] for r in rows2],
+        check(len(rows2) == 4 and [[r[k] for k in keys] for r in rows[:4]]
+              == [[r[k] for k in keys] for r in rows2],
               "--jobs 2: the same runs, DoFs, steps and QoIs")
-        check([(f["group"], f["classification"], f["observed_order"]) for f in fits]
-              == [(f["group"], f["classification"], f["observed_order"]) for f in fits2],
-              "--jobs 2: the same classifications and orders")
 
     print(f"{studylib.failures} check(s) failed" if studylib.failures else "all checks passed")
     return 1 if studylib.failures else 0
