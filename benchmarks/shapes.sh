@@ -33,20 +33,38 @@ run() { # name prm: run it, keep wall seconds and peak kB
     { echo "$1: the run failed: $(grep -m1 error "$work/$1.log")"; exit 1; }
 }
 
+derive() { # SRC OUT [OLD NEW]...: SRC without its '# test-' lines, each OLD replaced by NEW
+  # (an empty NEW drops the line holding OLD). An OLD that SRC does not hold stops the
+  # script: a changed test must not silently change the scene measured here.
+  /usr/bin/python3 - "$@" <<'PY'
+import sys
+src, out, subs = sys.argv[1], sys.argv[2], sys.argv[3:]
+text = "".join(l for l in open(src) if not l.startswith("# test-"))
+for old, new in zip(subs[::2], subs[1::2]):
+    if old not in text:
+        sys.exit(f"shapes.sh: {src} no longer holds '{old}'; update the benchmark")
+    if new:
+        text = text.replace(old, new)
+    else:
+        text = "".join(l for l in text.splitlines(True) if old not in l)
+open(out, "w").write(text)
+PY
+}
+
 # 1. Jeffery's orbit.
 jeffery="$top/tests/jeffery_ellipse_2d.prm"
 for case in tested finer box; do
   case $case in
-    tested) args=() ;;
-    finer)  args=(-e "s|Particle refinement levels = 3|Particle refinement levels = 4|"
-                  -e "s|Time step = 0.1|Time step = 0.05|") ;;
-    box)    args=(-e "s|Lower corner = -2, -1|Lower corner = -4, -2|"
-                  -e "s|Upper corner = 2, 1|Upper corner = 4, 2|"
-                  -e "s|Subdivisions = 16, 8|Subdivisions = 32, 16|"
-                  -e "s|Wall velocities = y+: 1, 0; y-: -1, 0|Wall velocities = y+: 2, 0; y-: -2, 0|"
-                  -e "s|End time = 8|End time = 9|") ;;
+    tested) subs=() ;;
+    finer)  subs=("Particle refinement levels = 3" "Particle refinement levels = 4"
+                  "Time step = 0.1" "Time step = 0.05") ;;
+    box)    subs=("Lower corner = -2, -1" "Lower corner = -4, -2"
+                  "Upper corner = 2, 1" "Upper corner = 4, 2"
+                  "Subdivisions = 16, 8" "Subdivisions = 32, 16"
+                  "Wall velocities = y+: 1, 0; y-: -1, 0" "Wall velocities = y+: 2, 0; y-: -2, 0"
+                  "End time = 8" "End time = 9") ;;
   esac
-  sed "${args[@]}" -e '/^# test-/d' "$jeffery" > "$work/jeffery-$case.prm"
+  derive "$jeffery" "$work/jeffery-$case.prm" "${subs[@]}"
   printf '\nsubsection Output\n  set Directory = %s\nend\n' "$work/jeffery-$case" >> "$work/jeffery-$case.prm"
   run "jeffery-$case" "$work/jeffery-$case.prm"
 done
@@ -59,17 +77,17 @@ for case in sphere equal spheroid; do
     equal)    shape="ellipsoid 0.15, 0.15, 0.15, 1, 2, 3, 30" ;;
     spheroid) shape="ellipsoid 0.3, 0.15, 0.15, 1, 2, 3, 30" ;;
   esac
-  sed -e '/^# test-/d' -e '/set Convection = false/d' -e '/set Level set order/d' \
-      -e "s|Subdivisions = 3, 4, 3|Subdivisions = 4, 6, 4|" \
-      -e "s|0.05, 0.3, 0.02 : 0.15 :|0.05, 0.3, 0.02 : $shape :|" \
-      -e "s|End time = 0.1|End time = 0.2|" "$scene" > "$work/cost-$case.prm"
+  derive "$scene" "$work/cost-$case.prm" "set Convection = false" "" "set Level set order" "" \
+         "Subdivisions = 3, 4, 3" "Subdivisions = 4, 6, 4" \
+         "0.05, 0.3, 0.02 : 0.15 :" "0.05, 0.3, 0.02 : $shape :" "End time = 0.1" "End time = 0.2"
   printf '\nsubsection Output\n  set Directory = %s\nend\n' "$work/cost-$case" >> "$work/cost-$case.prm"
   run "cost-$case" "$work/cost-$case.prm"
 done
 
 # 3. Sphere scenes before and after.
 if [ -n "${BASELINE:-}" ]; then
-  sed -e "s|set Directory    = output/sediment2d|set Directory = REPLACE|" "$top/prm/sediment2d.prm" > "$work/sediment2d.prm"
+  derive "$top/prm/sediment2d.prm" "$work/sediment2d.prm" \
+         "set Directory    = output/sediment2d" "set Directory = REPLACE"
   cp "$work/cost-sphere.prm" "$work/sphere3d.prm"
   for scene in sediment2d sphere3d; do
     for which in baseline current; do
