@@ -21,14 +21,16 @@ an hour):
 """
 import argparse
 import csv
-import datetime
 import math
 import os
 import subprocess
+import sys
 
 import numpy as np
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(TOP, "tests"))
+from testlib import run_provenance  # noqa: E402  (after the path it lives on)
 END = 3.14  # a half turn at angular velocity 1
 START = 1.0  # S over t >= START
 
@@ -106,17 +108,6 @@ def read_history(run_dir, dim):
     return t, force, torque
 
 
-def provenance(run_dir):
-    """The build that wrote the run (the first line of its parameters.prm) and when its
-    output was last written: a reused run keeps both."""
-    out = os.path.join(run_dir, "output")
-    with open(os.path.join(out, "parameters.prm")) as f:
-        revision = f.readline().split()[4]
-    when = os.path.getmtime(os.path.join(out, "particles.csv"))
-    return (datetime.datetime.fromtimestamp(when, datetime.timezone.utc).strftime("%Y-%m-%dT%H:%MZ"),
-            revision)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--dims", default="2")
@@ -162,7 +153,7 @@ def main():
                     row["S_smooth"] = f"{smoothness(t[keep], fit):.3g}"
                 else:
                     row["S_smooth"] = "0"
-                when, built = provenance(run_dir)
+                when, built = run_provenance(os.path.join(run_dir, "output"))
                 row.update({"date": when, "revision": built})
                 rows.append(row)
                 histories[(dim, name, level)] = (t, force)

@@ -21,16 +21,15 @@ spheroid (Oberbeck 1876; Chwang & Wu 1975, e = sqrt(1 - 1/r^2), l = ln((1+e)/(1-
 and 6 pi mu a for the sphere (r = 1, the control of the periodic correction); tilted, the
 mobility M = n n^T / R_along + (I - n n^T) / R_across (n the axis) gives U = M F.
 
-Writes doc/shapes_drag.csv (each row with the date, commit and machine) and prints the
-table of doc/shapes.md. About 40 minutes on 2 ranks; the finest runs take 11.3 GB a rank
-(nearly all of a 24 GB machine: run it alone).
+Writes doc/shapes_drag.csv (each row with when its run ended, the build that ran it and the
+machine) and prints the table of doc/shapes.md. About 40 minutes on 2 ranks; the finest runs
+take 11.3 GB a rank (nearly all of a 24 GB machine: run it alone).
 
 Usage (regenerate):  /usr/bin/python3 benchmarks/spheroid_drag.py [--ranks 2]
     [--work DIR] [--executable PATH] [--reuse] [--cases 1-along-3-4,2-along-4-4,...]
 """
 import argparse
 import csv
-import datetime
 import math
 import os
 import re
@@ -40,6 +39,8 @@ import sys
 from importlib.machinery import SourceFileLoader
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(TOP, "tests"))
+from testlib import run_provenance  # noqa: E402  (after the path it lives on)
 HASIMOTO = 2.837297  # 1.7601 (4 pi / 3)^(1/3): the periodic Stokeslet's self-term
 A = 0.1
 # (axis ratio, direction, particle refinement levels, base cells per edge):
@@ -108,21 +109,11 @@ def main():
     if args.cases:
         cases = [(int(r), d, int(l), int(n)) for r, d, l, n in (c.split("-") for c in args.cases.split(","))]
     os.makedirs(args.work, exist_ok=True)
-    commit = subprocess.run(["git", "-C", TOP, "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()
-    stamp = [datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%MZ"), commit,
-             socket.gethostname()]
     header = ["axis_ratio", "direction", "levels", "base_cells", "b_over_h", "dofs", "ranks", "wall_seconds",
               "peak_mb_per_rank", "fx", "mean_vx", "mean_vy", "resistance_periodic",
               "resistance_isolated", "analytic", "error_percent", "cross_error_percent_of_mxx",
               "date", "commit", "machine"]
-    # A reused run keeps the date, commit and machine it was measured with.
     csv_path = os.path.join(TOP, "doc", "shapes_drag.csv")
-    measured = {}
-    if args.reuse and os.path.exists(csv_path):
-        for row in read_rows(csv_path):
-            key = (row["axis_ratio"], row["direction"], row["levels"], row.get("base_cells", "4"))
-            measured[key] = [row["date"], row["commit"], row["machine"]]
     rows = []
     for ratio, direction, levels, base in cases:
         # The names of the 4^3 runs predate the base's own field.
@@ -130,10 +121,7 @@ def main():
         out = os.path.join(args.work, name)
         prm = os.path.join(args.work, name + ".prm")
         timing = os.path.join(args.work, name + ".time")
-        when = stamp
-        if args.reuse and os.path.exists(os.path.join(out, "particles.csv")):
-            when = measured.get((str(ratio), direction, str(levels), str(base)), stamp)
-        else:
+        if not (args.reuse and os.path.exists(os.path.join(out, "particles.csv"))):
             with open(SCENE) as f:
                 text = STUDY.apply_overrides(f.read(), {
                     "Particles/Particles": f"0.5, 0.5, 0.5 : {shape(ratio, direction)} : 1 : fixed",
@@ -170,7 +158,7 @@ def main():
                      stats["dofs"], ranks, seconds, f"{int(peak_kb) / 1024:.0f}",
                      f"{fx:.6f}", f"{u:.6g}", f"{v:.6g}", f"{fx / u:.5f}", f"{1 / m_xx:.5f}",
                      f"{1 / reference_xx:.5f}", f"{100 * (reference_xx / m_xx - 1):+.2f}",
-                     cross] + when)
+                     cross, *run_provenance(out), socket.gethostname()])
         print(" ".join(str(x) for x in rows[-1][:17]), flush=True)
     with open(csv_path, "w", newline="") as f:
         csv.writer(f).writerows([header] + rows)

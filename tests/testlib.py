@@ -1,5 +1,6 @@
 """Helpers for tests/NAME/check.py scripts: read fdparticle's CSV output, assert with context."""
 import csv
+import datetime
 import os
 import sys
 
@@ -52,6 +53,18 @@ def parameters(out_dir):
     {'Subsection/Name': value}."""
     with open(f"{out_dir}/parameters.prm") as f:
         return prm_entries(f.read())
+
+
+def run_provenance(out_dir):
+    """(date, revision) of the finished run in OUT_DIR: when its particles.csv was last
+    written (UTC) and the build named on the first line of its parameters.prm ('# Written
+    by fdparticle REVISION (...)'). A benchmark that reuses a run reports both."""
+    with open(f"{out_dir}/parameters.prm") as f:
+        words = f.readline().split()
+    revision = words[4] if words[:4] == ["#", "Written", "by", "fdparticle"] and len(words) > 4 else "unknown"
+    when = os.path.getmtime(f"{out_dir}/particles.csv")
+    return (datetime.datetime.fromtimestamp(when, datetime.timezone.utc).strftime("%Y-%m-%dT%H:%MZ"),
+            revision)
 
 
 # ------------------------------------------------------------------ comparing two runs
