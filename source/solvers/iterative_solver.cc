@@ -97,6 +97,7 @@ namespace fdparticle
     preconditioner.clear();
     op.reset();
     stale = true;
+    velocity_nonzeros = numbers::invalid_dof_index;
   }
 
   void IterativeSolver::operator_changed()
@@ -233,8 +234,8 @@ namespace fdparticle
     count();
     info.inner_iterations = inner;
     // Collective: counted on every rank before rank 0 prints.
-    const types::global_dof_index velocity_nonzeros =
-      verbose ? system.velocity_block_nonzeros() : 0;
+    if (verbose && velocity_nonzeros == numbers::invalid_dof_index)
+      velocity_nonzeros = system.velocity_block_nonzeros();
     if (verbose && Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator()) == 0)
       std::cout << "  iterative solver: " << info.iterations << " outer iterations ("
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "

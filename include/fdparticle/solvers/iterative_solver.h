@@ -87,6 +87,9 @@ namespace fdparticle
     double                            reference_rate = 0;
     /// Whether the cheap form of the current preconditioner failed to converge.
     bool                              cheap_failed = false;
+    /// Non-zeros of the velocity block for the statistics line, counted once per sparsity
+    /// pattern (invalid: not yet).
+    types::global_dof_index velocity_nonzeros = numbers::invalid_dof_index;
   };
 } // namespace fdparticle
 
