@@ -423,11 +423,11 @@ def main():
         out_dir = os.path.join(opts.work, f"ranks-{ranks}")
         prm_copy = os.path.join(opts.work, f"{name}-ranks-{ranks}.prm")
         shortened = rank_end_time is not None and ranks != ranks_list[0]
+        # A later 'set' overrides an earlier one: shorten the run, redirect the output.
+        scene = text + (f"\nsubsection Time\n  set End time = {rank_end_time!r}\nend\n"
+                        if shortened else "")
         with open(prm_copy, "w") as f:
-            # A later 'set' overrides an earlier one: redirect the output.
-            f.write(text + f"\nsubsection Output\n  set Directory = {out_dir}\nend\n")
-            if shortened:
-                f.write(f"subsection Time\n  set End time = {rank_end_time!r}\nend\n")
+            f.write(scene + f"\nsubsection Output\n  set Directory = {out_dir}\nend\n")
         args = d["test-args"].replace("@TESTS@", HERE).split() if "test-args" in d else [prm_copy]
         result = run(opts.executable, args, ranks, opts.work)
         sys.stdout.write(result.stdout[-4000:])
@@ -458,12 +458,9 @@ def main():
             if int(on_ranks) == ranks and expected not in result.stdout + result.stderr:
                 failures.append(f"the output on {ranks} rank(s) does not contain {expected!r}")
         solver_ranks = d.get("test-solvers", "").split()[2:]
-        other_solver = "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks)
+        if "test-solvers" in d and (not solver_ranks or str(ranks) in solver_ranks):
+            failures += check_other_solver(opts, scene, d, name, ranks, out_dir)
         if shortened:
-            if other_solver:
-                failures += check_other_solver(
-                    opts, text + f"\nsubsection Time\n  set End time = {rank_end_time!r}\nend\n",
-                    d, name, ranks, out_dir)
             continue
 
         if "test-compare" in d:
@@ -514,8 +511,6 @@ def main():
                                  compare_csv(os.path.join(v_dir, "particles.csv"),
                                              os.path.join(out_dir, "particles.csv"), rel, floor,
                                              run_box(out_dir), ignored)]
-        if other_solver:
-            failures += check_other_solver(opts, text, d, name, ranks, out_dir)
         if "test-check" in d:
             script, *check_args = d["test-check"].split()
             script = os.path.join(HERE, script)
