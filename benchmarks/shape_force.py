@@ -15,8 +15,8 @@ fourth harmonic of 2 theta): the part of S the turning itself makes.
 
 Writes doc/shapes_force.csv (each row with the date and the build of its run),
 doc/shapes_force.png, and prints a Markdown table; the studies go to
-benchmarks/work/shape_force/ (--reuse keeps finished runs). Run alone (2D: about 10 minutes on one rank; --dims 2,3 adds the 3D study, about
-an hour):
+benchmarks/work/shape_force/ (--reuse keeps finished runs). Run alone (2D: about 10 minutes
+on one rank; --dims 2,3 adds the 3D study, about an hour):
     /usr/bin/python3 benchmarks/shape_force.py [--dims 2] [--reuse]
 """
 import argparse

@@ -12,7 +12,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # The Debug build runs 10-30 times slower, so CI runs there one test of each code path:
 # the fast unit tests (the shapes' contact geometry among them), input errors (checkpoints
 # read and refused), Stokes and Navier-Stokes, recovery (and its checkpoint), periodic
-# directions and adaptive refinement on 2 ranks. restart_2d and the mirror tests take over ten minutes each there.
+# directions and adaptive refinement on 2 ranks. restart_2d and the mirror tests take over
+# ten minutes each there.
 debug_units='assembly_terms collisions direct_solver newton_solver cut_cell_quadrature parameters particle_refinement rigid_body time_stepper velocity_operator'
 debug_tests="^unit/(${debug_units// /|})\$"
 debug_tests+='|^bad_|^(regression_sediment_2d|regression_cavity_2d|recovery_2d|recovery_exhausted_2d'
