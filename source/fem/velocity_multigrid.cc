@@ -32,6 +32,7 @@ namespace fdparticle
     : mapping(mapping)
     , domain(domain)
     , fe(FE_Q<dim>(VelocityOperator<dim>::degree), dim)
+    , coarse_fe(FE_Q<dim>(1), dim)
   {}
 
   template <int dim>
@@ -57,27 +58,30 @@ namespace fdparticle
     transfer.reset();
     const auto &fine = dynamic_cast<const parallel::distributed::Triangulation<dim> &>(
       system_dofs->get_triangulation());
-    const unsigned int n_levels = fine.n_global_levels();
+    // Level 0: Q1 on the base mesh; level l > 0: Q2 on the mesh coarsened l − 1 times
+    // less than the system's (the last level is the system's mesh).
+    const unsigned int n_levels = fine.n_global_levels() + 1;
     meshes.assign(n_levels, nullptr);
     meshes.back().reset(&fine, [](const auto *) {});
-    for (unsigned int level = n_levels - 1; level > 0; --level)
+    for (unsigned int level = n_levels - 1; level > 1; --level)
       {
         auto coarser = std::make_shared<parallel::distributed::Triangulation<dim>>(
           fine.get_communicator(), fine.get_mesh_smoothing());
         domain.create_coarsened_copy(*meshes[level], *coarser);
         meshes[level - 1] = coarser;
       }
+    meshes[0] = meshes[1];
 
     dof_handlers.clear();
     constraints.resize(0, n_levels - 1);
-    operators.resize(0, n_levels - 1);
+    operators.resize(1, n_levels - 1);
     transfers.resize(0, n_levels - 1);
     level_iterates.resize(0, n_levels - 1);
     for (unsigned int level = 0; level < n_levels; ++level)
       {
         dof_handlers.push_back(std::make_unique<DoFHandler<dim>>(*meshes[level]));
         DoFHandler<dim> &dofs = *dof_handlers.back();
-        dofs.distribute_dofs(fe);
+        dofs.distribute_dofs(level == 0 ? coarse_fe : fe);
         IndexSet relevant;
         DoFTools::extract_locally_relevant_dofs(dofs, relevant);
         AffineConstraints<double> &c = constraints[level];
@@ -87,15 +91,27 @@ namespace fdparticle
         domain.make_periodicity_constraints(dofs, c);
         domain.make_wall_constraints(dofs, ComponentMask(dim, true), true, c);
         c.close();
+        if (level == 0)
+          continue;
         operators[level].reinit(mapping, dofs, c);
         operators[level].initialize_dof_vector(level_iterates[level]);
-        if (level > 0)
+        if (level == 1)
+          transfers[level].reinit_polynomial_transfer(dofs, *dof_handlers[0], c, constraints[0]);
+        else
           transfers[level].reinit_geometric_transfer(dofs, *dof_handlers[level - 1], c,
                                                      constraints[level - 1]);
       }
+    const DoFHandler<dim> &base = *dof_handlers[0];
+    IndexSet               base_relevant;
+    DoFTools::extract_locally_relevant_dofs(base, base_relevant);
+    base_partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      base.locally_owned_dofs(), base_relevant, base.get_communicator());
     transfer = std::make_unique<MGTransferGlobalCoarsening<dim, VectorType>>(
       transfers, [this](const unsigned int level, VectorType &v) {
-        operators[level].initialize_dof_vector(v);
+        if (level == 0)
+          v.reinit(base_partitioner);
+        else
+          operators[level].initialize_dof_vector(v);
       });
 
     // Each owned fine velocity DoF's place in the system, from the cells both share.
@@ -167,8 +183,8 @@ namespace fdparticle
         iterate.update_ghost_values();
         transfer->interpolate_to_mg(level_iterates, iterate);
       }
-    MGLevelObject<typename Smoother::AdditionalData> smoother_data(0, n_levels - 1);
-    for (unsigned int level = 0; level < n_levels; ++level)
+    MGLevelObject<typename Smoother::AdditionalData> smoother_data(1, n_levels - 1);
+    for (unsigned int level = 1; level < n_levels; ++level)
       {
         VelocityOperator<dim> &op = operators[level];
         op.set_coefficients(density, viscosity, c0, convection ? &level_iterates[level] : nullptr);
@@ -188,10 +204,12 @@ namespace fdparticle
       }
     smoother.initialize(operators, smoother_data);
 
-    // The base mesh: ML as the block preconditioner sets it up for the velocity block, the
-    // velocity components of the base mesh as near null space.
-    operators[0].compute_matrix(constraints[0], coarse_matrix);
+    // Q1 on the base mesh: the Galerkin projection of the Q2 operator there, and ML as the
+    // block preconditioner sets it up for the velocity block (but for linear elements),
+    // the velocity components as near null space.
+    operators[1].compute_matrix(*dof_handlers[0], constraints[0], coarse_matrix);
     TrilinosWrappers::PreconditionAMG::AdditionalData amg = amg_settings;
+    amg.higher_order_elements = false;
     DoFTools::extract_constant_modes(*dof_handlers[0], ComponentMask(dim, true),
                                      amg.constant_modes);
     coarse_amg.initialize(coarse_matrix, amg);

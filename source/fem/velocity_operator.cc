@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_tools.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/matrix_free/fe_evaluation.h>
 
@@ -284,13 +285,15 @@ namespace fdparticle
   }
 
   template <int dim>
-  void VelocityOperator<dim>::compute_matrix(const AffineConstraints<double> &constraints,
+  void VelocityOperator<dim>::compute_matrix(const DoFHandler<dim> &          dof_handler,
+                                             const AffineConstraints<double> &constraints,
                                              TrilinosWrappers::SparseMatrix & matrix) const
   {
-    const DoFHandler<dim> &dof_handler = matrix_free.get_dof_handler();
-    const unsigned int     level       = matrix_free.get_mg_level();
-    AssertThrow(level == numbers::invalid_unsigned_int,
-                ExcMessage("VelocityOperator::compute_matrix works on the active cells."));
+    const DoFHandler<dim> &own_dofs = matrix_free.get_dof_handler();
+    AssertThrow(matrix_free.get_mg_level() == numbers::invalid_unsigned_int &&
+                  &dof_handler.get_triangulation() == &own_dofs.get_triangulation(),
+                ExcMessage("VelocityOperator::compute_matrix works on the active cells of "
+                           "the operator's own mesh."));
     const MPI_Comm comm = dof_handler.get_communicator();
     IndexSet       relevant;
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
@@ -301,11 +304,25 @@ namespace fdparticle
     sparsity.compress();
     matrix.reinit(sparsity);
 
+    // A coarser element's cell matrix is Eᵀ A_K E, E its interpolation into the
+    // operator's element (a Galerkin projection: the coarser space lies in the finer).
+    const FiniteElement<dim> &coarse_fe = dof_handler.get_fe();
+    const bool                project   = coarse_fe != own_dofs.get_fe();
+    FullMatrix<double>        embedding;
+    if (project)
+      {
+        embedding.reinit(own_dofs.get_fe().n_dofs_per_cell(), coarse_fe.n_dofs_per_cell());
+        FETools::get_interpolation_matrix(coarse_fe, own_dofs.get_fe(), embedding);
+      }
+    FullMatrix<double>                   projected(coarse_fe.n_dofs_per_cell(),
+                                 coarse_fe.n_dofs_per_cell());
+    std::vector<types::global_dof_index> coarse_dofs(coarse_fe.n_dofs_per_cell());
+
     // Column j of a cell's matrix is the kernel applied to the unit vector e_j: the cell
     // fills all lanes, one unit vector in each.
     using Kernel             = Q2CellKernel<dim>;
     constexpr unsigned int L = Kernel::lanes;
-    const unsigned int     n = dof_handler.get_fe().n_dofs_per_cell();
+    const unsigned int     n = own_dofs.get_fe().n_dofs_per_cell();
     const unsigned int     nq = Kernel::n_points;
     const auto &lexicographic = matrix_free.get_shape_info().lexicographic_numbering;
     std::vector<double> in(n * L), out(n * L), lengths(dim * L), volumes(L),
@@ -341,8 +358,21 @@ namespace fdparticle
                     local(lexicographic[i], lexicographic[first + l]) = out[i * L + l];
               }
           }
-        cell_iterator->get_dof_indices(dofs);
-        constraints.distribute_local_to_global(local, dofs, matrix);
+        if (project)
+          {
+            projected = 0;
+            projected.triple_product(local, embedding, embedding, true, false);
+            typename DoFHandler<dim>::active_cell_iterator(&dof_handler.get_triangulation(),
+                                                           cell_iterator->level(),
+                                                           cell_iterator->index(), &dof_handler)
+              ->get_dof_indices(coarse_dofs);
+            constraints.distribute_local_to_global(projected, coarse_dofs, matrix);
+          }
+        else
+          {
+            cell_iterator->get_dof_indices(dofs);
+            constraints.distribute_local_to_global(local, dofs, matrix);
+          }
       }
     matrix.compress(VectorOperation::add);
   }

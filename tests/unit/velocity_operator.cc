@@ -14,6 +14,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_tools.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <fdparticle/base/fluid.h>
@@ -246,7 +247,7 @@ namespace
     // The operator as a matrix (compute_matrix, a coarse level's AMG): its product equals
     // the operator's on the rows no constraint touches.
     TrilinosWrappers::SparseMatrix matrix;
-    op.compute_matrix(velocity_constraints, matrix);
+    op.compute_matrix(velocity_dofs, velocity_constraints, matrix);
     Vector y_m;
     op.initialize_dof_vector(y_m);
     matrix.vmult(y_m, x_u);
@@ -255,6 +256,59 @@ namespace
       if (!tied[v])
         matrix_difference = std::max(matrix_difference, std::abs(y_m[v] - y_u[v]));
     matrix_difference = Utilities::MPI::max(matrix_difference, comm);
+
+    // The operator projected on Q1 on the same mesh (compute_matrix with a coarser
+    // element: the velocity multigrid's coarsest level): y₁ᵀ A₁ x₁ = (E y₁)ᵀ A (E x₁) for
+    // Q1 fields x₁, y₁ in the constrained space and E their interpolation into Q2, both
+    // sums over the rows no constraint holds.
+    const FESystem<dim> linear_fe(FE_Q<dim>(1), dim);
+    DoFHandler<dim>     linear_dofs(tria);
+    linear_dofs.distribute_dofs(linear_fe);
+    IndexSet linear_relevant;
+    DoFTools::extract_locally_relevant_dofs(linear_dofs, linear_relevant);
+    AffineConstraints<double> linear_constraints(linear_relevant);
+    DoFTools::make_hanging_node_constraints(linear_dofs, linear_constraints);
+    domain.make_periodicity_constraints(linear_dofs, linear_constraints);
+    domain.make_wall_constraints(linear_dofs, ComponentMask(dim, true), true, linear_constraints);
+    linear_constraints.close();
+    TrilinosWrappers::SparseMatrix linear_matrix;
+    op.compute_matrix(linear_dofs, linear_constraints, linear_matrix);
+    const auto linear_partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      linear_dofs.locally_owned_dofs(), linear_relevant, comm);
+    Vector x_1(linear_partitioner), y_1(linear_partitioner), z_1(linear_partitioner);
+    for (unsigned int i = 0; i < x_1.locally_owned_size(); ++i)
+      {
+        x_1.local_element(i) = uniform(random);
+        y_1.local_element(i) = uniform(random);
+      }
+    Vector x_2, y_2, z_2;
+    op.initialize_dof_vector(x_2);
+    op.initialize_dof_vector(y_2);
+    op.initialize_dof_vector(z_2);
+    for (auto [v_1, v_2] : {std::pair(&x_1, &x_2), std::pair(&y_1, &y_2)})
+      {
+        linear_constraints.distribute(*v_1);
+        v_1->update_ghost_values();
+        FETools::interpolate(linear_dofs, *v_1, velocity_dofs, velocity_constraints, *v_2);
+        v_1->zero_out_ghost_values();
+      }
+    linear_matrix.vmult(z_1, x_1);
+    op.vmult(z_2, x_2);
+    const auto free_product = [&](const Vector &a, const Vector &b,
+                                  const AffineConstraints<double> &c) {
+      double sums[2] = {0, 0};
+      const IndexSet &owned_rows = a.get_partitioner()->locally_owned_range();
+      for (unsigned int i = 0; i < a.locally_owned_size(); ++i)
+        if (!c.is_constrained(owned_rows.nth_index_in_set(i)))
+          {
+            sums[0] += a.local_element(i) * b.local_element(i);
+            sums[1] += std::abs(a.local_element(i) * b.local_element(i));
+          }
+      Utilities::MPI::sum(ArrayView<const double>(sums, 2), comm, ArrayView<double>(sums, 2));
+      return std::pair(sums[0], sums[1]);
+    };
+    const auto [linear_product, linear_scale] = free_product(y_1, z_1, linear_constraints);
+    const auto [quadratic_product, quadratic_scale] = free_product(y_2, z_2, velocity_constraints);
 
     const double cut_fraction = op.cut_cell_fraction();
     const std::string what = std::to_string(dim) + "D " + (convection ? "Navier-Stokes" : "Stokes") +
@@ -270,6 +324,11 @@ namespace
           what + ": the operator's matrix multiplies as the operator does",
           "max difference " + std::to_string(matrix_difference) + " of max |A_uu x| " +
             std::to_string(largest));
+    check(linear_scale > 0 &&
+            std::abs(linear_product - quadratic_product) <= 1e-12 * quadratic_scale,
+          what + ": the Q1 projection of the operator is its Galerkin restriction",
+          "y1' A1 x1 = " + std::to_string(linear_product) + ", (E y1)' A (E x1) = " +
+            std::to_string(quadratic_product));
     check(n_compared > 0 && diagonal_difference <= 1e-12 * largest_diagonal,
           what + ": the diagonal equals the assembled one where no constraint ties the DoF",
           "max difference " + std::to_string(diagonal_difference) + " of " +

@@ -33,14 +33,14 @@ namespace fdparticle
 
   /**
    * One geometric multigrid V-cycle for the velocity block K of the Newton matrix
-   * (doc/method.md §8): VelocityOperator on every level, Chebyshev smoothing on its
-   * diagonal, one AMG V-cycle (ML, with the block preconditioner's settings) on the base
-   * mesh's operator, assembled: on a mesh without levels below it, the block
-   * preconditioner's ML V-cycle on A_uu. The levels are the mesh coarsened
-   * globally one level at a time (Domain::create_coarsened_copy), each with its own
-   * hanging-node, periodicity and wall constraints, so the particle-following refinement
-   * needs no interface terms; MGTwoLevelTransfer moves between them. The finest level is
-   * K exactly (its cut cells by their assembled matrices); the coarser ones use the Gauss
+   * (doc/method.md §8): VelocityOperator on every Q2 level, Chebyshev smoothing on its
+   * diagonal, and below them Q1 on the base mesh, where one AMG V-cycle (ML, with the
+   * block preconditioner's settings) works on the Galerkin projection of the base mesh's
+   * Q2 operator, assembled. The Q2 levels are the mesh coarsened globally one level at a
+   * time (Domain::create_coarsened_copy), each with its own hanging-node, periodicity and
+   * wall constraints, so the particle-following refinement needs no interface terms;
+   * MGTwoLevelTransfer moves between them (and from Q2 to Q1). The finest level is K
+   * exactly (its cut cells by their assembled matrices); the coarser ones use the Gauss
    * rule in every cell.
    *
    * Use: reinit() whenever the system's DoFs change, set_jacobian() after each assembly
@@ -79,19 +79,22 @@ namespace fdparticle
 
     const Mapping<dim> &  mapping;
     const Domain<dim> &   domain;
-    const FESystem<dim>   fe;
+    const FESystem<dim>   fe, coarse_fe;
     const DoFHandler<dim> *system_dofs = nullptr;
     /// The system's first DoF on this rank.
     types::global_dof_index first_owned = 0;
     bool                    levels_current = false;
 
-    /// Coarsest first; the last is the system's own mesh.
+    /// Per level, coarsest first: the base mesh twice (Q1, then Q2), then the finer
+    /// meshes; the last is the system's own mesh.
     std::vector<std::shared_ptr<const parallel::distributed::Triangulation<dim>>> meshes;
     std::vector<std::unique_ptr<DoFHandler<dim>>>                             dof_handlers;
     MGLevelObject<AffineConstraints<double>>                                 constraints;
     MGLevelObject<VelocityOperator<dim>>                                      operators;
     MGLevelObject<MGTwoLevelTransfer<dim, VectorType>>                        transfers;
     std::unique_ptr<MGTransferGlobalCoarsening<dim, VectorType>>              transfer;
+    /// The layout of level 0's vectors (it has no operator).
+    std::shared_ptr<const Utilities::MPI::Partitioner>                       base_partitioner;
 
     using Smoother = PreconditionChebyshev<VelocityOperator<dim>, VectorType>;
     mg::SmootherRelaxation<Smoother, VectorType>             smoother;

@@ -77,9 +77,11 @@ namespace fdparticle
     /// approximation on the masters of hanging nodes).
     void compute_diagonal(VectorType &diagonal) const;
 
-    /// The operator as a sparse matrix, cell by cell through the constraints (constrained
-    /// rows get AffineConstraints' diagonal): for a coarse level's algebraic solver.
-    void compute_matrix(const AffineConstraints<double> &constraints,
+    /// The operator as a sparse matrix on dof_handler, cell by cell through its
+    /// constraints (constrained rows get AffineConstraints' diagonal): for a coarse
+    /// level's algebraic solver. dof_handler is the operator's own or one of a coarser
+    /// element on the same mesh (e.g. Q1), into which each cell's matrix is projected.
+    void compute_matrix(const DoFHandler<dim> &dof_handler, const AffineConstraints<double> &constraints,
                         TrilinosWrappers::SparseMatrix & matrix) const;
 
     /// The number of rows, and a diagonal entry (i == j) after compute_diagonal(): what
