@@ -57,10 +57,11 @@ namespace fdparticle
                         "Iterative solver: the approximate inverse of the velocity block inside "
                         "the block preconditioner (doc/method.md §8). multigrid: one geometric "
                         "multigrid V-cycle on the matrix-free velocity operator over the mesh "
-                        "coarsened level by level down to the base mesh, ML there; no velocity "
-                        "matrix, half the set-up. It gains where the mesh has levels: give a "
-                        "large mesh as few Subdivisions and Global refinements (doc/scaling.md). "
-                        "amg: one ML V-cycle on the assembled velocity matrix.");
+                        "coarsened level by level down to the base mesh, then linear elements "
+                        "there, ML on those; no velocity matrix. It gains most where the mesh "
+                        "has levels: give a large mesh as few Subdivisions and Global "
+                        "refinements (doc/scaling.md). amg: one ML V-cycle on the assembled "
+                        "velocity matrix.");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),
                         "Print, for every linear solve, the outer and inner iterations, the "
                         "residual reached, the cut-cell patch's size and memory, and rank 0's "
