@@ -5,9 +5,9 @@
 # ranks. Scenes (3D):
 #  - sediment n: the one-step Stokes sediment of benchmarks/scaling_scenes.sh on the same
 #    n x 2n x n mesh, built as a 3 x 6 x 3 (or 1 x 2 x 1) base mesh refined globally, so
-#    that the multigrid has levels below it (n = 12, 16, 24: 198 k, 457 k, 1.51 M unknowns);
+#    that the multigrid has mesh levels below it (n = 12, 16, 24: 198 k, 457 k, 1.51 M unknowns);
 #  - flat n: the same scene on an n x 2n x n base mesh, as benchmarks/scaling.sh runs it:
-#    no level below it, so the multigrid is one ML V-cycle on its own assembly of A_uu;
+#    no mesh level below it, so the multigrid has two levels, Q2 and Q1 on that mesh;
 #  - array k: prm/validation/array3d.prm (fixed sphere, periodic cube, steady Stokes, two
 #    particle refinement levels: hanging nodes) with k global refinements.
 # One row of doc/velocity_preconditioner.csv per run: unknowns, multigrid levels, FGMRES
@@ -61,8 +61,9 @@ for c in $cases; do
         continue
       fi
       read -r wall kb < "$d/time"
+      # The mesh's levels and the Q1 level below them.
       levels=$(awk '/^  set Global refinements/ {g = $5} /^  set Particle refinement levels/ {p = $6}
-                    END {print g + p + 1}' "$d/scene.prm")
+                    END {print g + p + 2}' "$d/scene.prm")
       [ "$vp" = amg ] && levels=1
       # "built in A s (patch B s), iterations C s (...; this solve: ..., velocity V-cycles D s, ...)"
       parts=$(grep -m1 'iterative solver:' "$d/log" |
