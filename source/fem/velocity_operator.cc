@@ -314,9 +314,9 @@ namespace fdparticle
         embedding.reinit(own_dofs.get_fe().n_dofs_per_cell(), coarse_fe.n_dofs_per_cell());
         FETools::get_interpolation_matrix(coarse_fe, own_dofs.get_fe(), embedding);
       }
-    FullMatrix<double>                   projected(coarse_fe.n_dofs_per_cell(),
-                                 coarse_fe.n_dofs_per_cell());
-    std::vector<types::global_dof_index> coarse_dofs(coarse_fe.n_dofs_per_cell());
+    const unsigned int n_coarse = coarse_fe.n_dofs_per_cell();
+    FullMatrix<double> projected(n_coarse, n_coarse);
+    std::vector<types::global_dof_index> coarse_dofs(n_coarse);
 
     // Column j of a cell's matrix is the kernel applied to the unit vector e_j: the cell
     // fills all lanes, one unit vector in each.

@@ -154,18 +154,25 @@ namespace
     TrilinosWrappers::MPI::Vector y(owned, comm);
     system.A.vmult(y, x);
 
-    // The velocity-only DoFs on the same mesh with the same constraints, and the operator.
-    const FESystem<dim> velocity_fe(FE_Q<dim>(Introspection<dim>::velocity_degree), dim);
-    DoFHandler<dim>     velocity_dofs(tria);
-    velocity_dofs.distribute_dofs(velocity_fe);
-    IndexSet velocity_relevant;
-    DoFTools::extract_locally_relevant_dofs(velocity_dofs, velocity_relevant);
-    AffineConstraints<double> velocity_constraints(velocity_relevant);
-    DoFTools::make_hanging_node_constraints(velocity_dofs, velocity_constraints);
-    domain.make_periodicity_constraints(velocity_dofs, velocity_constraints);
-    domain.make_wall_constraints(velocity_dofs, ComponentMask(dim, true), true,
-                                 velocity_constraints);
-    velocity_constraints.close();
+    // The velocity-only DoFs of an element on the same mesh with the system's
+    // constraints (hanging nodes, periodicity, walls); their relevant DoFs.
+    const auto distribute = [&](DoFHandler<dim> &dofs, const FiniteElement<dim> &fe,
+                                AffineConstraints<double> &c) {
+      dofs.distribute_dofs(fe);
+      IndexSet relevant;
+      DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+      c.reinit(relevant);
+      DoFTools::make_hanging_node_constraints(dofs, c);
+      domain.make_periodicity_constraints(dofs, c);
+      domain.make_wall_constraints(dofs, ComponentMask(dim, true), true, c);
+      c.close();
+      return relevant;
+    };
+    // The Q2 velocity DoFs, and the operator.
+    const FESystem<dim>       velocity_fe(FE_Q<dim>(Introspection<dim>::velocity_degree), dim);
+    DoFHandler<dim>           velocity_dofs(tria);
+    AffineConstraints<double> velocity_constraints;
+    distribute(velocity_dofs, velocity_fe, velocity_constraints);
     VelocityOperator<dim> op;
     op.reinit(assembler.get_mapping(), velocity_dofs, velocity_constraints);
 
@@ -261,16 +268,10 @@ namespace
     // element: the velocity multigrid's coarsest level): y₁ᵀ A₁ x₁ = (E y₁)ᵀ A (E x₁) for
     // Q1 fields x₁, y₁ in the constrained space and E their interpolation into Q2, both
     // sums over the rows no constraint holds.
-    const FESystem<dim> linear_fe(FE_Q<dim>(1), dim);
-    DoFHandler<dim>     linear_dofs(tria);
-    linear_dofs.distribute_dofs(linear_fe);
-    IndexSet linear_relevant;
-    DoFTools::extract_locally_relevant_dofs(linear_dofs, linear_relevant);
-    AffineConstraints<double> linear_constraints(linear_relevant);
-    DoFTools::make_hanging_node_constraints(linear_dofs, linear_constraints);
-    domain.make_periodicity_constraints(linear_dofs, linear_constraints);
-    domain.make_wall_constraints(linear_dofs, ComponentMask(dim, true), true, linear_constraints);
-    linear_constraints.close();
+    const FESystem<dim>       linear_fe(FE_Q<dim>(1), dim);
+    DoFHandler<dim>           linear_dofs(tria);
+    AffineConstraints<double> linear_constraints;
+    const IndexSet linear_relevant = distribute(linear_dofs, linear_fe, linear_constraints);
     TrilinosWrappers::SparseMatrix linear_matrix;
     op.compute_matrix(linear_dofs, linear_constraints, linear_matrix);
     const auto linear_partitioner = std::make_shared<Utilities::MPI::Partitioner>(

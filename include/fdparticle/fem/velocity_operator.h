@@ -81,7 +81,8 @@ namespace fdparticle
     /// constraints (constrained rows get AffineConstraints' diagonal): for a coarse
     /// level's algebraic solver. dof_handler is the operator's own or one of a coarser
     /// element on the same mesh (e.g. Q1), into which each cell's matrix is projected.
-    void compute_matrix(const DoFHandler<dim> &dof_handler, const AffineConstraints<double> &constraints,
+    void compute_matrix(const DoFHandler<dim> &          dof_handler,
+                        const AffineConstraints<double> &constraints,
                         TrilinosWrappers::SparseMatrix & matrix) const;
 
     /// The number of rows, and a diagonal entry (i == j) after compute_diagonal(): what
