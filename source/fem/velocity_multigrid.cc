@@ -25,6 +25,43 @@ namespace fdparticle
     private:
       const Preconditioner &preconditioner;
     };
+
+    /// The level operators for Multigrid: VelocityOperator on the Q2 levels 1, 2, …;
+    /// level 0 (Q1) has none, the coarse solve acts there alone.
+    template <int dim, typename VectorType>
+    class LevelOperators : public MGMatrixBase<VectorType>
+    {
+    public:
+      explicit LevelOperators(const MGLevelObject<VelocityOperator<dim>> &operators)
+        : operators(operators)
+      {}
+      void vmult(const unsigned int level, VectorType &dst, const VectorType &src) const override
+      {
+        operators[level].vmult(dst, src);
+      }
+      void vmult_add(const unsigned int level, VectorType &dst,
+                     const VectorType &src) const override
+      {
+        VectorType product;
+        product.reinit(dst);
+        operators[level].vmult(product, src);
+        dst += product;
+      }
+      void Tvmult(const unsigned int level, VectorType &dst, const VectorType &src) const override
+      {
+        operators[level].Tvmult(dst, src);
+      }
+      void Tvmult_add(const unsigned int level, VectorType &dst,
+                      const VectorType &src) const override
+      {
+        operators[level].Tvmult(dst, src);
+      }
+      unsigned int get_minlevel() const override { return 0; }
+      unsigned int get_maxlevel() const override { return operators.max_level(); }
+
+    private:
+      const MGLevelObject<VelocityOperator<dim>> &operators;
+    };
   } // namespace
 
   template <int dim>
@@ -215,7 +252,7 @@ namespace fdparticle
     coarse_amg.initialize(coarse_matrix, amg);
     coarse = std::make_unique<ApplyPreconditioner<VectorType, TrilinosWrappers::PreconditionAMG>>(
       coarse_amg);
-    level_matrix = std::make_unique<mg::Matrix<VectorType>>(operators);
+    level_matrix = std::make_unique<LevelOperators<dim, VectorType>>(operators);
     multigrid =
       std::make_unique<Multigrid<VectorType>>(*level_matrix, *coarse, *transfer, smoother, smoother);
     preconditioner = std::make_unique<

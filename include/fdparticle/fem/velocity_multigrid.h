@@ -14,7 +14,6 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/multigrid/mg_base.h>
 #include <deal.II/multigrid/mg_coarse.h>
-#include <deal.II/multigrid/mg_matrix.h>
 #include <deal.II/multigrid/mg_smoother.h>
 #include <deal.II/multigrid/mg_transfer_global_coarsening.h>
 #include <deal.II/multigrid/multigrid.h>
@@ -102,7 +101,7 @@ namespace fdparticle
     TrilinosWrappers::SparseMatrix                           coarse_matrix;
     TrilinosWrappers::PreconditionAMG                        coarse_amg;
     std::unique_ptr<MGCoarseGridBase<VectorType>>            coarse;
-    std::unique_ptr<mg::Matrix<VectorType>>                  level_matrix;
+    std::unique_ptr<MGMatrixBase<VectorType>>                level_matrix;
     std::unique_ptr<Multigrid<VectorType>>                   multigrid;
     std::unique_ptr<PreconditionMG<dim, VectorType, MGTransferGlobalCoarsening<dim, VectorType>>>
       preconditioner;
