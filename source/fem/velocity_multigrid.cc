@@ -129,7 +129,12 @@ namespace fdparticle
         domain.make_wall_constraints(dofs, ComponentMask(dim, true), true, c);
         c.close();
         if (level == 0)
-          continue;
+          {
+            // Level 0 has no operator to lay out its vectors.
+            base_partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+              dofs.locally_owned_dofs(), relevant, dofs.get_communicator());
+            continue;
+          }
         operators[level].reinit(mapping, dofs, c);
         operators[level].initialize_dof_vector(level_iterates[level]);
         if (level == 1)
@@ -138,11 +143,6 @@ namespace fdparticle
           transfers[level].reinit_geometric_transfer(dofs, *dof_handlers[level - 1], c,
                                                      constraints[level - 1]);
       }
-    const DoFHandler<dim> &base = *dof_handlers[0];
-    IndexSet               base_relevant;
-    DoFTools::extract_locally_relevant_dofs(base, base_relevant);
-    base_partitioner = std::make_shared<Utilities::MPI::Partitioner>(
-      base.locally_owned_dofs(), base_relevant, base.get_communicator());
     transfer = std::make_unique<MGTransferGlobalCoarsening<dim, VectorType>>(
       transfers, [this](const unsigned int level, VectorType &v) {
         if (level == 0)
