@@ -167,6 +167,11 @@ namespace fdparticle
       }
     Vector<double> local_velocity_mass(n);
     const unsigned int n_velocity = scalar_fe.n_dofs_per_cell();
+    std::vector<unsigned int> velocity_dofs; // the cell's, in the system element
+    for (unsigned int i = 0; i < n; ++i)
+      if (Introspection<dim>::field(fe.system_to_component_index(i).first) ==
+          Introspection<dim>::Field::velocity)
+        velocity_dofs.push_back(i);
     if (cut_velocity_matrices)
       cut_velocity_matrices->assign(dof_handler.get_triangulation().n_active_cells(),
                                     FullMatrix<double>());
@@ -246,6 +251,12 @@ namespace fdparticle
                   for (unsigned int b = 0; b < n_velocity; ++b)
                     m(ci * n_velocity + a, cj * n_velocity + b) = copy.matrix(row(ci, a), row(cj, b));
           }
+        // The caller applies the velocity block without a matrix (VelocityBlock); A's
+        // pattern leaves it out, and zeros are not written.
+        if (with_matrix && cut_velocity_matrices)
+          for (const unsigned int i : velocity_dofs)
+            for (const unsigned int j : velocity_dofs)
+              copy.matrix(i, j) = 0;
         cell->get_dof_indices(dof_indices);
         if (fluid_mass)
           {

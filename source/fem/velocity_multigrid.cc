@@ -3,6 +3,7 @@
 #include <deal.II/fe/fe_q.h>
 
 #include <fdparticle/fem/introspection.h>
+#include <fdparticle/fem/velocity_block.h>
 #include <fdparticle/fem/velocity_multigrid.h>
 
 namespace fdparticle
@@ -119,20 +120,13 @@ namespace fdparticle
         dof_handlers.push_back(std::make_unique<DoFHandler<dim>>(*meshes[level]));
         DoFHandler<dim> &dofs = *dof_handlers.back();
         dofs.distribute_dofs(level == 0 ? coarse_fe : fe);
-        IndexSet relevant;
-        DoFTools::extract_locally_relevant_dofs(dofs, relevant);
         AffineConstraints<double> &c = constraints[level];
-        c.clear();
-        c.reinit(relevant);
-        DoFTools::make_hanging_node_constraints(dofs, c);
-        domain.make_periodicity_constraints(dofs, c);
-        domain.make_wall_constraints(dofs, ComponentMask(dim, true), true, c);
-        c.close();
+        make_velocity_constraints(domain, dofs, c);
         if (level == 0)
           {
             // Level 0 has no operator to lay out its vectors.
             base_partitioner = std::make_shared<Utilities::MPI::Partitioner>(
-              dofs.locally_owned_dofs(), relevant, dofs.get_communicator());
+              dofs.locally_owned_dofs(), c.get_local_lines(), dofs.get_communicator());
             continue;
           }
         operators[level].reinit(mapping, dofs, c);
@@ -151,36 +145,7 @@ namespace fdparticle
           operators[level].initialize_dof_vector(v);
       });
 
-    // Each owned fine velocity DoF's place in the system, from the cells both share.
-    const DoFHandler<dim> &   velocity_dofs = *dof_handlers.back();
-    const FiniteElement<dim> &system_fe     = system_dofs->get_fe();
-    const IndexSet            owned         = velocity_dofs.locally_owned_dofs();
-    const IndexSet            system_owned  = system_dofs->locally_owned_dofs();
-    system_position.assign(owned.n_elements(), numbers::invalid_unsigned_int);
-    std::vector<types::global_dof_index> system_cell_dofs(system_fe.n_dofs_per_cell()),
-      cell_dofs(fe.n_dofs_per_cell());
-    const unsigned int n_scalar = fe.base_element(0).n_dofs_per_cell();
-    for (const auto &cell : velocity_dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(cell_dofs);
-          typename DoFHandler<dim>::active_cell_iterator(&fine, cell->level(), cell->index(),
-                                                         system_dofs)
-            ->get_dof_indices(system_cell_dofs);
-          for (unsigned int c = 0; c < dim; ++c)
-            for (unsigned int a = 0; a < n_scalar; ++a)
-              {
-                const auto v = cell_dofs[fe.component_to_system_index(c, a)];
-                if (!owned.is_element(v))
-                  continue;
-                const auto s = system_cell_dofs[system_fe.component_to_system_index(
-                  Introspection<dim>::first_velocity_component + c, a)];
-                AssertThrow(system_owned.is_element(s),
-                            ExcMessage("The velocity multigrid needs each velocity DoF owned "
-                                       "by the same rank in both numberings."));
-                system_position[owned.index_within_set(v)] = s - first_owned;
-              }
-        }
+    system_position = system_positions(*dof_handlers.back(), *system_dofs, first_owned);
     operators.back().initialize_dof_vector(iterate);
     operators.back().initialize_dof_vector(in);
     operators.back().initialize_dof_vector(out);

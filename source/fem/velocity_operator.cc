@@ -318,46 +318,19 @@ namespace fdparticle
     FullMatrix<double> projected(n_coarse, n_coarse);
     std::vector<types::global_dof_index> coarse_dofs(n_coarse);
 
-    // Column j of a cell's matrix is the kernel applied to the unit vector e_j: the cell
-    // fills all lanes, one unit vector in each.
-    using Kernel             = Q2CellKernel<dim>;
-    constexpr unsigned int L = Kernel::lanes;
     const unsigned int     n = own_dofs.get_fe().n_dofs_per_cell();
-    const unsigned int     nq = Kernel::n_points;
     const auto &lexicographic = matrix_free.get_shape_info().lexicographic_numbering;
-    std::vector<double> in(n * L), out(n * L), lengths(dim * L), volumes(L),
-      w(convection ? nq * dim * L : 0), grad_w(convection ? nq * dim * dim * L : 0);
-    FullMatrix<double>                   local(n, n);
+    FullMatrix<double>                   local(n, n), cell_matrix_of_batch(n, n);
     std::vector<types::global_dof_index> dofs(n);
     for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
       {
         const auto cell_iterator = matrix_free.get_cell_iterator(cell, 0);
-        if (batch_is_cut[cell])
-          {
-            const FullMatrix<double> &m = cut_matrices[cell_iterator->active_cell_index()];
-            for (unsigned int i = 0; i < n; ++i)
-              for (unsigned int j = 0; j < n; ++j)
-                local(lexicographic[i], lexicographic[j]) =
-                  m(matrix_row_of_evaluation_index[i], matrix_row_of_evaluation_index[j]);
-          }
-        else
-          {
-            for (unsigned int l = 0; l < L; ++l)
-              load_cell_data(cell, l, lengths.data(), volumes.data(), w.data(), grad_w.data());
-            for (unsigned int first = 0; first < n; first += L)
-              {
-                std::fill(in.begin(), in.end(), 0.0);
-                for (unsigned int l = 0; l < L && first + l < n; ++l)
-                  in[(first + l) * L + l] = 1;
-                Kernel::apply(in.data(), out.data(), lengths.data(), volumes.data(),
-                              convection ? w.data() : nullptr,
-                              convection ? grad_w.data() : nullptr, density * c0, density,
-                              viscosity);
-                for (unsigned int l = 0; l < L && first + l < n; ++l)
-                  for (unsigned int i = 0; i < n; ++i)
-                    local(lexicographic[i], lexicographic[first + l]) = out[i * L + l];
-              }
-          }
+        cell_matrix(cell, cell_matrix_of_batch);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            local(lexicographic[i], lexicographic[j]) =
+              cell_matrix_of_batch(matrix_row_of_evaluation_index[i],
+                                   matrix_row_of_evaluation_index[j]);
         if (project)
           {
             projected = 0;
@@ -375,6 +348,39 @@ namespace fdparticle
           }
       }
     matrix.compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::cell_matrix(const unsigned int cell, FullMatrix<double> &matrix) const
+  {
+    const unsigned int n = matrix_row_of_evaluation_index.size();
+    matrix.reinit(n, n);
+    if (batch_is_cut[cell])
+      {
+        matrix = cut_matrices[matrix_free.get_cell_iterator(cell, 0)->active_cell_index()];
+        return;
+      }
+    // Column j is the kernel applied to the unit vector e_j: the cell fills all lanes,
+    // one unit vector in each.
+    using Kernel             = Q2CellKernel<dim>;
+    constexpr unsigned int L = Kernel::lanes, nq = Kernel::n_points;
+    std::vector<double> in(n * L), out(n * L), lengths(dim * L), volumes(L),
+      w(convection ? nq * dim * L : 0), grad_w(convection ? nq * dim * dim * L : 0);
+    for (unsigned int l = 0; l < L; ++l)
+      load_cell_data(cell, l, lengths.data(), volumes.data(), w.data(), grad_w.data());
+    for (unsigned int first = 0; first < n; first += L)
+      {
+        std::fill(in.begin(), in.end(), 0.0);
+        for (unsigned int l = 0; l < L && first + l < n; ++l)
+          in[(first + l) * L + l] = 1;
+        Kernel::apply(in.data(), out.data(), lengths.data(), volumes.data(),
+                      convection ? w.data() : nullptr, convection ? grad_w.data() : nullptr,
+                      density * c0, density, viscosity);
+        for (unsigned int l = 0; l < L && first + l < n; ++l)
+          for (unsigned int i = 0; i < n; ++i)
+            matrix(matrix_row_of_evaluation_index[i], matrix_row_of_evaluation_index[first + l]) =
+              out[i * L + l];
+      }
   }
 
   template <int dim>

@@ -43,6 +43,8 @@ namespace fdparticle
     const Timer           timer;
     const Eigen::VectorXd y     = particle_part(src);
     system.A.vmult(dst.block(0), src.block(0));
+    if (system.blocks.velocity_product)
+      system.blocks.velocity_product->vmult_add(dst.block(0), src.block(0));
     system.add_border(y, dst.block(0));
     set_particle_part(dst, system.border_product(src.block(0)) + system.D * y);
     vmult_seconds += timer.wall_time();

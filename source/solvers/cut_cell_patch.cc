@@ -62,16 +62,19 @@ namespace fdparticle
     clear();
     const MPI_Comm                comm = system.r_fe.get_mpi_communicator();
     std::set<std::pair<int, int>> meeting;
-    find_components(system, grow(system, layers, max_fluid_fraction, meeting), meeting);
+    std::vector<bool>             row_cells;
+    find_components(system, grow(system, layers, max_fluid_fraction, meeting, row_cells),
+                    meeting);
     if (dealii::Utilities::MPI::sum<unsigned long long>(dofs.size(), comm) == 0)
       return "";
-    assemble(system);
+    assemble(system, row_cells);
     return factor(memory_limit, comm);
   }
 
   std::vector<int> CutCellPatch::grow(const NewtonSystem &system, const unsigned int layers,
                                       const double                   max_fluid_fraction,
-                                      std::set<std::pair<int, int>> &meeting) const
+                                      std::set<std::pair<int, int>> &meeting,
+                                      std::vector<bool> &            row_cells) const
   {
     using Blocks               = NewtonSystem::Blocks;
     const Epetra_CrsMatrix &E  = system.A.trilinos_matrix();
@@ -103,6 +106,7 @@ namespace fdparticle
       return false;
     };
 
+    row_cells.assign(n_cells, false);
     std::vector<unsigned int> new_cells;
     // Seeds: the cells with a particle part whose fluid part is at most
     // max_fluid_fraction of the cell (the pressure mass over the fluid part sums the same
@@ -173,7 +177,21 @@ namespace fdparticle
             }
         receive(add_velocity);
         if (layer == layers)
-          break;
+          {
+            if (system.blocks.velocity_product)
+              {
+                // The cells around the last ring's velocity DoFs: with the patch's own,
+                // all that add to its velocity rows.
+                auto add_row_cell = [&](const unsigned int j, int) {
+                  if (block_of(j) == Blocks::pressure)
+                    row_cells[(j - o_p) / npc] = true;
+                };
+                for (const unsigned int u : new_velocities)
+                  row_columns(u, Blocks::pressure, label[u], add_row_cell);
+                receive(add_row_cell);
+              }
+            break;
+          }
         new_cells.clear();
         auto add_cell = [&](const unsigned int j, const int particle) {
           if (block_of(j) == Blocks::pressure && reach(cell_label[(j - o_p) / npc], particle))
@@ -183,6 +201,9 @@ namespace fdparticle
           row_columns(u, Blocks::pressure, label[u], add_cell);
         receive(add_cell);
       }
+    for (unsigned int c = 0; c < n_cells; ++c)
+      if (cell_label[c] >= 0)
+        row_cells[c] = true;
     return label;
   }
 
@@ -220,7 +241,7 @@ namespace fdparticle
         }
   }
 
-  void CutCellPatch::assemble(const NewtonSystem &system)
+  void CutCellPatch::assemble(const NewtonSystem &system, const std::vector<bool> &row_cells)
   {
     const Epetra_CrsMatrix &E  = system.A.trilinos_matrix();
     const Epetra_Comm &     ec = E.Comm();
@@ -236,6 +257,39 @@ namespace fdparticle
     rows = std::make_unique<Epetra_CrsMatrix>(Copy, row_map, 0);
     rows->Import(E, local, Insert);
     rows->FillComplete(E.DomainMap(), E.RangeMap());
+    if (system.blocks.velocity_product)
+      {
+        // A without its velocity block: the velocity block's entries of the cells around
+        // the patch rows, added row by row.
+        TrilinosWrappers::SparseMatrix velocity;
+        system.blocks.velocity_product->assemble_on_cells(row_cells, velocity);
+        Epetra_CrsMatrix velocity_rows(Copy, row_map, 0);
+        velocity_rows.Import(velocity.trilinos_matrix(), local, Insert);
+        velocity_rows.FillComplete(E.DomainMap(), E.RangeMap());
+        auto                        sum = std::make_unique<Epetra_CrsMatrix>(Copy, row_map, 0);
+        std::map<long long, double> entries;
+        std::vector<int>            cols;
+        std::vector<double>         values;
+        for (int r = 0; r < rows->NumMyRows(); ++r)
+          {
+            entries.clear();
+            for_each_entry(*rows, r, [&](const long long g, const double v) { entries[g] += v; });
+            for_each_entry(velocity_rows, r,
+                           [&](const long long g, const double v) { entries[g] += v; });
+            cols.clear();
+            values.clear();
+            for (const auto &[g, v] : entries)
+              {
+                cols.push_back(static_cast<int>(g));
+                values.push_back(v);
+              }
+            AssertThrow(sum->InsertGlobalValues(row_map.GID(r), cols.size(), values.data(),
+                                                cols.data()) == 0,
+                        ExcInternalError());
+          }
+        sum->FillComplete(E.DomainMap(), E.RangeMap());
+        rows = std::move(sum);
+      }
     column_import = std::make_unique<Epetra_Import>(rows->ColMap(), E.RowMap());
     columns       = std::make_unique<Epetra_Vector>(rows->ColMap());
 

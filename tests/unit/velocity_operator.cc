@@ -2,7 +2,9 @@
 // the matrix-free velocity block equals the velocity block of the Jacobian that
 // NavierStokesAssembler assembles, A_uu x, on the unconstrained rows, to 1e-12 of |A_uu x|,
 // and so do its diagonal where no constraint ties a DoF to others and its assembled matrix
-// (compute_matrix) on the same rows.
+// (compute_matrix) on the same rows. With the Jacobian assembled without its velocity
+// block (the iterative solver's multigrid path), that A plus VelocityBlock's product, and
+// plus VelocityBlock's matrix of all cells (the cut-cell patch's rows), equal the whole A.
 // Scenes: 2D and 3D boxes with a periodic direction and walls, a mesh refined around a
 // sphere (hanging nodes), the sphere cutting cells; Stokes and Navier–Stokes (Newton's
 // convection at a random iterate), the Gauss and the level-set cut-cell rules (a Debug
@@ -24,6 +26,7 @@
 #include <fdparticle/fem/domain.h>
 #include <fdparticle/fem/introspection.h>
 #include <fdparticle/fem/navier_stokes_assembler.h>
+#include <fdparticle/fem/velocity_block.h>
 #include <fdparticle/fem/velocity_operator.h>
 
 #include "unit_check.h"
@@ -103,7 +106,7 @@ namespace
     DoFHandler<dim>     dof_handler(tria);
     dof_handler.distribute_dofs(fe);
     NewtonSystem system;
-    number_dofs_by_block(dof_handler, false, system.blocks);
+    number_dofs_by_block(dof_handler, true, system.blocks);
     const IndexSet owned = dof_handler.locally_owned_dofs();
     IndexSet       relevant;
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
@@ -148,11 +151,47 @@ namespace
     const std::array<double, 3>   c = time.coefficients();
     NavierStokesAssembler<dim>    assembler(fe, fluid, particles, quadrature);
     assembler.parse_parameters(prm);
-    std::vector<FullMatrix<double>> cut_matrices;
-    assembler.assemble(dof_handler, iterate_ghosted, history, c, constraints, true, system,
-                       &cut_matrices);
+    assembler.assemble(dof_handler, iterate_ghosted, history, c, constraints, true, system);
     TrilinosWrappers::MPI::Vector y(owned, comm);
     system.A.vmult(y, x);
+
+    // The same Jacobian with the velocity block left to VelocityBlock (the iterative
+    // solver's multigrid): A' x + K x, and A' x + K_cells x with the velocity block
+    // assembled on all cells (the cut-cell patch's rows), equal A x.
+    NewtonSystem split;
+    split.blocks = system.blocks;
+    split.reinit(owned, relevant, sparsity, true,
+                 NewtonSystem::border_pattern(owned, relevant, 0, comm), comm);
+    std::vector<FullMatrix<double>> cut_matrices;
+    assembler.assemble(dof_handler, iterate_ghosted, history, c, constraints, true, split,
+                       &cut_matrices);
+    VelocityBlock<dim> block(assembler.get_mapping(), domain);
+    block.reinit(dof_handler, split.blocks, constraints);
+    block.set_jacobian(fluid.density, fluid.viscosity, c[0], fluid.convection ? &iterate : nullptr,
+                       cut_matrices);
+    TrilinosWrappers::MPI::Vector y_split(owned, comm), y_cells(owned, comm);
+    split.A.vmult(y_split, x);
+    y_cells = y_split;
+    block.vmult_add(y_split, x);
+    const auto &range = split.blocks.range[Utilities::MPI::this_mpi_process(comm)];
+    const std::vector<bool> all_cells((range[NewtonSystem::Blocks::pressure + 1] -
+                                       range[NewtonSystem::Blocks::pressure]) /
+                                        split.blocks.pressure_dofs_per_cell,
+                                      true);
+    TrilinosWrappers::SparseMatrix cells_matrix;
+    block.assemble_on_cells(all_cells, cells_matrix);
+    cells_matrix.vmult_add(y_cells, x);
+    double split_largest = 0, split_difference = 0, cells_difference = 0;
+    for (const auto s : owned)
+      if (!constraints.is_constrained(s))
+        {
+          split_largest    = std::max(split_largest, std::abs(y[s]));
+          split_difference = std::max(split_difference, std::abs(y[s] - y_split[s]));
+          cells_difference = std::max(cells_difference, std::abs(y[s] - y_cells[s]));
+        }
+    split_largest    = Utilities::MPI::max(split_largest, comm);
+    split_difference = Utilities::MPI::max(split_difference, comm);
+    cells_difference = Utilities::MPI::max(cells_difference, comm);
 
     // The velocity-only DoFs of an element on the same mesh with the system's
     // constraints (hanging nodes, periodicity, walls); their relevant DoFs.
@@ -321,6 +360,14 @@ namespace
           what + ": matrix-free A_uu x equals the assembled one",
           "max difference " + std::to_string(difference) + " of max |A_uu x| " +
             std::to_string(largest));
+    check(split_largest > 0 && split_difference <= 1e-12 * split_largest,
+          what + ": A without its velocity block plus VelocityBlock multiplies as A",
+          "max difference " + std::to_string(split_difference) + " of max |A x| " +
+            std::to_string(split_largest));
+    check(cells_difference <= 1e-12 * split_largest,
+          what + ": A without its velocity block plus the block assembled on all cells multiplies as A",
+          "max difference " + std::to_string(cells_difference) + " of max |A x| " +
+            std::to_string(split_largest));
     check(matrix_difference <= 1e-12 * largest,
           what + ": the operator's matrix multiplies as the operator does",
           "max difference " + std::to_string(matrix_difference) + " of max |A_uu x| " +

@@ -32,6 +32,8 @@ namespace fdparticle
 {
   template <int dim>
   class VelocityMultigrid;
+  template <int dim>
+  class VelocityBlock;
 
   using namespace dealii;
 
@@ -132,7 +134,9 @@ namespace fdparticle
     FESystem<dim>                             fe;
     DoFHandler<dim>                           dof_handler;
     NavierStokesAssembler<dim>                assembler;
-    /// The velocity block's multigrid, if the linear solver asks for it.
+    /// The velocity block without a matrix, and its multigrid, if the linear solver asks
+    /// for them.
+    std::shared_ptr<VelocityBlock<dim>>       velocity_block;
     std::shared_ptr<VelocityMultigrid<dim>>   velocity_multigrid;
 
     IndexSet                  owned_dofs, relevant_dofs, velocity_dofs, multiplier_dofs;

@@ -68,7 +68,8 @@ namespace fdparticle
      * With the matrix and cut_velocity_matrices given, it also returns the velocity block
      * of each owned cut cell's matrix (before the constraints), indexed by the cell's
      * active_cell_index() and ordered (component c, FE_Q shape function a) → c n + a; other
-     * cells get an empty matrix (VelocityOperator::set_cut_cell_matrices).
+     * cells get an empty matrix (VelocityOperator::set_cut_cell_matrices), and A gets no
+     * velocity block: the caller applies it without a matrix (VelocityBlock).
      */
     std::vector<ParticleIntegrals<dim>>
     assemble(const DoFHandler<dim> &dof_handler, const TrilinosWrappers::MPI::Vector &solution,

@@ -85,6 +85,10 @@ namespace fdparticle
                         const AffineConstraints<double> &constraints,
                         TrilinosWrappers::SparseMatrix & matrix) const;
 
+    /// The matrix of cell batch `cell` (one cell) before the constraints, in the order of
+    /// set_cut_cell_matrices(): a cut cell's own, any other's from the kernel.
+    void cell_matrix(const unsigned int cell, FullMatrix<double> &matrix) const;
+
     /// The number of rows, and a diagonal entry (i == j) after compute_diagonal(): what
     /// deal.II's smoothers ask of a matrix.
     types::global_dof_index m() const { return matrix_free.get_vector_partitioner()->size(); }

@@ -17,7 +17,8 @@ namespace fdparticle
    * The Newton matrix [A B; C D] of a NewtonSystem (doc/method.md §8) as an operator on
    * block vectors for a Krylov method: block 0 holds the finite-element unknowns in A's
    * layout, block 1 the m particle unknowns, all owned by rank 0 (m is small; every rank
-   * needs all of them for B y, and one broadcast gives them).
+   * needs all of them for B y, and one broadcast gives them). Where A leaves out the
+   * velocity block, NewtonSystem::Blocks::velocity_product adds it.
    */
   class BorderedOperator
   {

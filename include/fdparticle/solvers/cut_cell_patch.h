@@ -78,17 +78,21 @@ namespace fdparticle
   private:
     /// The patch DoFs among this rank's (local numbers, −1: not in the patch), each
     /// labelled with the particle whose seed cells reached it, and the pairs of particles
-    /// whose rings meet (smaller first). Collective.
+    /// whose rings meet (smaller first); where A leaves out the velocity block, row_cells
+    /// marks this rank's cells (in the order of their pressure DoFs) that add to the
+    /// patch's velocity rows. Collective.
     std::vector<int> grow(const NewtonSystem &system, const unsigned int layers,
                           const double max_fluid_fraction,
-                          std::set<std::pair<int, int>> &meeting) const;
+                          std::set<std::pair<int, int>> &meeting,
+                          std::vector<bool> &            row_cells) const;
     /// From the labels of grow: this rank's patch DoFs (dofs) and the component of each
     /// (its smallest particle). Collective.
     void find_components(const NewtonSystem &system, const std::vector<int> &label,
                          const std::set<std::pair<int, int>> &meeting);
-    /// The patch DoFs' rows of A, and the patch matrix from them, its rows and columns
-    /// numbered 0 … n − 1 over all ranks in the order of the DoFs. Collective.
-    void assemble(const NewtonSystem &system);
+    /// The patch DoFs' rows of A (with the velocity block of row_cells where A leaves it
+    /// out), and the patch matrix from them, its rows and columns numbered 0 … n − 1 over
+    /// all ranks in the order of the DoFs. Collective.
+    void assemble(const NewtonSystem &system, const std::vector<bool> &row_cells);
     /// Factor the patch matrix unless it would need more than memory_limit bytes on one
     /// rank (0: no limit); returns why not, or an empty string. Collective.
     std::string factor(const double memory_limit, const MPI_Comm comm);

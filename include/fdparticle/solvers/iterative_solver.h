@@ -50,8 +50,8 @@ namespace fdparticle
 
     std::string   name() const override { return "iterative"; }
     bool          iterative() const override { return true; }
-    /// The Schur complement approximation reads the cells' pressure mass matrices; the
-    /// velocity block is inverted by the program's multigrid if so chosen.
+    /// The Schur complement approximation reads the cells' pressure mass matrices; with
+    /// the multigrid the velocity block is the program's, applied without a matrix.
     AssembledData assembled_data() const override { return {true, velocity_multigrid}; }
     void      pattern_changed() override;
     void      operator_changed() override;

@@ -70,9 +70,10 @@ namespace fdparticle
       /// NewtonSystem::Blocks::pressure_mass and pressure_fluid_mass, the cells' pressure
       /// mass matrices (for a Schur complement approximation).
       bool cell_pressure_masses = false;
-      /// NewtonSystem::Blocks::velocity_inverse, an inverse of the velocity block that
-      /// knows the mesh (the program's geometric multigrid).
-      bool velocity_inverse = false;
+      /// The velocity block is the program's: A leaves it out, NewtonSystem::Blocks::
+      /// velocity_product applies it without a matrix and velocity_inverse inverts it by
+      /// the program's geometric multigrid.
+      bool matrix_free_velocity_block = false;
     };
     virtual AssembledData assembled_data() const { return {}; }
 

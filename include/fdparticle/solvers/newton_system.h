@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <fdparticle/solvers/velocity_block_inverse.h>
+#include <fdparticle/solvers/velocity_block_product.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -144,6 +145,8 @@ namespace fdparticle
       /// The velocity block's inverse by the program's geometric multigrid, or nullptr:
       /// the preconditioner builds an AMG V-cycle on A_uu itself.
       std::shared_ptr<VelocityBlockInverse> velocity_inverse;
+      /// The velocity block applied without a matrix where A leaves it out, or nullptr.
+      std::shared_ptr<VelocityBlockProduct> velocity_product;
     };
     Blocks blocks;
 

@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/velocity_block.h>
 #include <fdparticle/fem/velocity_multigrid.h>
 #include <fdparticle/fem/block_numbering.h>
 #include <fdparticle/fem/introspection.h>
@@ -54,8 +55,12 @@ namespace fdparticle
       linear_solver = create_linear_solver(prm, dim, dof_handler.n_dofs());
     number_dofs_by_block(dof_handler, linear_solver->assembled_data().cell_pressure_masses,
                          system.blocks);
-    if (linear_solver->assembled_data().velocity_inverse)
+    if (linear_solver->assembled_data().matrix_free_velocity_block)
       {
+        if (!velocity_block)
+          velocity_block = std::make_shared<VelocityBlock<dim>>(assembler.get_mapping(), domain);
+        velocity_block->reinit(dof_handler, system.blocks, update_constraints);
+        system.blocks.velocity_product = velocity_block;
         if (!velocity_multigrid)
           velocity_multigrid =
             std::make_shared<VelocityMultigrid<dim>>(assembler.get_mapping(), domain);
@@ -223,10 +228,13 @@ namespace fdparticle
     // walls) keep only their diagonal, so the direct solver never sees the λ block away
     // from the particles. Couplings of (F1)–(F3), doc/method.md §3: u with everything, λ_i with u_i and λ_i
     // (rigidity, fluid penalty), λ_i with λ_j (strain penalty), p with u; p with p only for the diagonal of the
-    // constrained pressure-level DoF (cell-local, so cheap).
+    // constrained pressure-level DoF (cell-local, so cheap). u with u not where the
+    // program applies the velocity block without a matrix (VelocityBlock): then A holds
+    // only the constrained velocity rows' diagonal.
     using Field = typename Introspection<dim>::Field;
     constexpr unsigned int       n_components = Introspection<dim>::n_components;
     Table<2, DoFTools::Coupling> coupling(n_components, n_components);
+    const bool matrix_free = linear_solver->assembled_data().matrix_free_velocity_block;
     for (unsigned int i = 0; i < n_components; ++i)
       for (unsigned int j = 0; j < n_components; ++j)
         {
@@ -236,7 +244,8 @@ namespace fdparticle
           const bool  same = (i % dim == j % dim) && !p_i && !p_j;
           // The strain penalty couples the components of λ with each other.
           const bool l_l = f_i == Field::multiplier && f_j == Field::multiplier;
-          coupling[i][j] = ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || (p_i && p_j) || same || l_l) ?
+          coupling[i][j] = (matrix_free && u_i && u_j) ? DoFTools::none :
+                           ((u_i && u_j) || (u_i && p_j) || (p_i && u_j) || (p_i && p_j) || same || l_l) ?
                              DoFTools::always :
                              DoFTools::none;
         }

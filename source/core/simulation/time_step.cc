@@ -3,6 +3,7 @@
 
 #include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
+#include <fdparticle/fem/velocity_block.h>
 #include <fdparticle/fem/velocity_multigrid.h>
 
 #include <cmath>
@@ -107,6 +108,9 @@ namespace fdparticle
       last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
                                           update_constraints, with_jacobian, system,
                                           multigrid ? &cut_matrices : nullptr);
+      if (multigrid)
+        velocity_block->set_jacobian(fluid.density, fluid.viscosity, c[0],
+                                     fluid.convection ? &solution : nullptr, cut_matrices);
       if (multigrid)
         velocity_multigrid->set_jacobian(fluid.density, fluid.viscosity, c[0],
                                          fluid.convection ? &solution : nullptr,
