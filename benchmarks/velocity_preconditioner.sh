@@ -13,7 +13,8 @@
 # One row of doc/velocity_preconditioner.csv per run: unknowns, multigrid levels, FGMRES
 # (inner) iterations, the step's and the run's wall time, peak memory of the largest rank, and from
 # the statistics line the preconditioner's set-up (its patch's part), the iterations'
-# time and the velocity block's part of it. Compare within one run, alone on the machine.
+# time, its velocity V-cycles' and operator products' parts, and the non-zeros of the
+# Newton matrix (with multigrid it holds no velocity block). Compare within one run, alone on the machine.
 # Usage: bash benchmarks/velocity_preconditioner.sh   (~45 min on 2 cores; 9 GB at n = 24)
 # CASES="sediment:12 array:0" overrides the scenes, EXE the program; APPEND=1 adds the
 # rows to the CSV instead of starting it anew.
@@ -43,7 +44,7 @@ scene() { # kind size
 }
 
 [ "${APPEND:-0}" = 1 ] ||
-echo "scene,size,ranks,velocity_preconditioner,dofs,levels,linear_iterations,inner_iterations,step_seconds,wall_seconds,peak_mb,setup_seconds,patch_setup_seconds,iterate_seconds,velocity_cycle_seconds,date,commit" > "$csv"
+echo "scene,size,ranks,velocity_preconditioner,dofs,levels,linear_iterations,inner_iterations,step_seconds,wall_seconds,peak_mb,setup_seconds,patch_setup_seconds,iterate_seconds,velocity_cycle_seconds,product_seconds,matrix_nonzeros,date,commit" > "$csv"
 for c in $cases; do
   kind=${c%:*}; size=${c#*:}
   for ranks in 1 2; do
@@ -65,9 +66,10 @@ for c in $cases; do
       levels=$(awk '/^  set Global refinements/ {g = $5} /^  set Particle refinement levels/ {p = $6}
                     END {print g + p + 2}' "$d/scene.prm")
       [ "$vp" = amg ] && levels=1
-      # "built in A s (patch B s), iterations C s (...; this solve: ..., velocity V-cycles D s, ...)"
+      # "Newton matrix N non-zeros ...; built in A s (patch B s), iterations C s (...; this
+      # solve: operator products E s, velocity V-cycles D s, ...)"
       parts=$(grep -m1 'iterative solver:' "$d/log" |
-        sed -E 's/.*built in ([0-9.e-]+) s \(patch ([0-9.e-]+) s\), iterations ([0-9.e-]+) s .*velocity V-cycles ([0-9.e-]+) s.*/\1,\2,\3,\4/')
+        sed -E 's/.*Newton matrix ([0-9]+) non-zeros.*built in ([0-9.e-]+) s \(patch ([0-9.e-]+) s\), iterations ([0-9.e-]+) s .*operator products ([0-9.e-]+) s, velocity V-cycles ([0-9.e-]+) s.*/\2,\3,\4,\6,\5,\1/')
       echo "$kind,$size,$ranks,$vp,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs),$levels,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last linear_iterations inner_iterations wall_seconds),$wall,$((kb / 1024)),$parts,$date,$commit" | tee -a "$csv"
     done
   done

@@ -111,6 +111,10 @@ namespace fdparticle
   {
     if (!current)
       build();
+    this->density   = density;
+    this->viscosity = viscosity;
+    this->c0        = c0;
+    convection      = iterate_in != nullptr;
     if (iterate_in != nullptr)
       {
         const double *values = iterate_in->trilinos_vector()[0];

@@ -66,9 +66,11 @@ namespace fdparticle
   } // namespace
 
   template <int dim>
-  VelocityMultigrid<dim>::VelocityMultigrid(const Mapping<dim> &mapping, const Domain<dim> &domain)
+  VelocityMultigrid<dim>::VelocityMultigrid(const Mapping<dim> &mapping, const Domain<dim> &domain,
+                                            const VelocityBlock<dim> &fine)
     : mapping(mapping)
     , domain(domain)
+    , fine(fine)
     , fe(FE_Q<dim>(VelocityOperator<dim>::degree), dim)
     , coarse_fe(FE_Q<dim>(1), dim)
   {}
@@ -77,13 +79,9 @@ namespace fdparticle
   VelocityMultigrid<dim>::~VelocityMultigrid() = default;
 
   template <int dim>
-  void VelocityMultigrid<dim>::reinit(const DoFHandler<dim> &     system_dofs,
-                                      const NewtonSystem::Blocks &blocks)
+  void VelocityMultigrid<dim>::reinit()
   {
-    this->system_dofs = &system_dofs;
-    const MPI_Comm comm = system_dofs.get_communicator();
-    first_owned         = blocks.range[Utilities::MPI::this_mpi_process(comm)][0];
-    levels_current      = false;
+    levels_current = false;
   }
 
   template <int dim>
@@ -94,17 +92,17 @@ namespace fdparticle
     level_matrix.reset();
     coarse.reset();
     transfer.reset();
-    const auto &fine = dynamic_cast<const parallel::distributed::Triangulation<dim> &>(
-      system_dofs->get_triangulation());
+    const auto &fine_mesh = dynamic_cast<const parallel::distributed::Triangulation<dim> &>(
+      fine.get_dof_handler().get_triangulation());
     // Level 0: Q1 on the base mesh; level l > 0: Q2 on the mesh coarsened l − 1 times
     // less than the system's (the last level is the system's mesh).
-    const unsigned int n_levels = fine.n_global_levels() + 1;
+    const unsigned int n_levels = fine_mesh.n_global_levels() + 1;
     meshes.assign(n_levels, nullptr);
-    meshes.back().reset(&fine, [](const auto *) {});
+    meshes.back().reset(&fine_mesh, [](const auto *) {});
     for (unsigned int level = n_levels - 1; level > 1; --level)
       {
         auto coarser = std::make_shared<parallel::distributed::Triangulation<dim>>(
-          fine.get_communicator(), fine.get_mesh_smoothing());
+          fine_mesh.get_communicator(), fine_mesh.get_mesh_smoothing());
         domain.create_coarsened_copy(*meshes[level], *coarser);
         meshes[level - 1] = coarser;
       }
@@ -117,11 +115,20 @@ namespace fdparticle
     level_iterates.resize(0, n_levels - 1);
     for (unsigned int level = 0; level < n_levels; ++level)
       {
-        dof_handlers.push_back(std::make_unique<DoFHandler<dim>>(*meshes[level]));
-        DoFHandler<dim> &dofs = *dof_handlers.back();
-        dofs.distribute_dofs(level == 0 ? coarse_fe : fe);
         AffineConstraints<double> &c = constraints[level];
-        make_velocity_constraints(domain, dofs, c);
+        if (level + 1 == n_levels)
+          {
+            dof_handlers.emplace_back(&fine.get_dof_handler(), [](const auto *) {});
+            c.copy_from(fine.get_constraints());
+          }
+        else
+          {
+            auto dofs = std::make_shared<DoFHandler<dim>>(*meshes[level]);
+            dofs->distribute_dofs(level == 0 ? coarse_fe : fe);
+            make_velocity_constraints(domain, *dofs, c);
+            dof_handlers.push_back(dofs);
+          }
+        const DoFHandler<dim> &dofs = *dof_handlers.back();
         if (level == 0)
           {
             // Level 0 has no operator to lay out its vectors.
@@ -145,32 +152,9 @@ namespace fdparticle
           operators[level].initialize_dof_vector(v);
       });
 
-    system_position = system_positions(*dof_handlers.back(), *system_dofs, first_owned);
-    operators.back().initialize_dof_vector(iterate);
     operators.back().initialize_dof_vector(in);
     operators.back().initialize_dof_vector(out);
     levels_current = true;
-  }
-
-  template <int dim>
-  void VelocityMultigrid<dim>::set_jacobian(const double density, const double viscosity,
-                                            const double                         c0,
-                                            const TrilinosWrappers::MPI::Vector *iterate_in,
-                                            std::vector<FullMatrix<double>>      cut_matrices)
-  {
-    if (!levels_current)
-      build_levels();
-    this->density      = density;
-    this->viscosity    = viscosity;
-    this->c0           = c0;
-    this->cut_matrices = std::move(cut_matrices);
-    convection         = iterate_in != nullptr;
-    if (convection)
-      {
-        const double *values = iterate_in->trilinos_vector()[0];
-        for (unsigned int i = 0; i < system_position.size(); ++i)
-          iterate.local_element(i) = values[system_position[i]];
-      }
   }
 
   template <int dim>
@@ -178,20 +162,24 @@ namespace fdparticle
     const NewtonSystem &                                     system,
     const TrilinosWrappers::PreconditionAMG::AdditionalData &amg_settings)
   {
-    AssertThrow(levels_current, ExcMessage("The velocity multigrid has no Jacobian."));
-    const unsigned int n_levels = operators.max_level() + 1;
-    if (convection)
+    if (!levels_current)
+      build_levels();
+    const unsigned int n_levels  = operators.max_level() + 1;
+    const VectorType * iterate   = fine.get_iterate();
+    const double density = fine.get_density(), viscosity = fine.get_viscosity(), c0 = fine.get_c0();
+    if (iterate)
       {
-        iterate.update_ghost_values();
-        transfer->interpolate_to_mg(level_iterates, iterate);
+        iterate->update_ghost_values();
+        transfer->interpolate_to_mg(level_iterates, *iterate);
       }
     MGLevelObject<typename Smoother::AdditionalData> smoother_data(1, n_levels - 1);
     for (unsigned int level = 1; level < n_levels; ++level)
       {
         VelocityOperator<dim> &op = operators[level];
-        op.set_coefficients(density, viscosity, c0, convection ? &level_iterates[level] : nullptr);
-        op.set_cut_cell_matrices(level + 1 == n_levels ? cut_matrices :
-                                                         std::vector<FullMatrix<double>>());
+        op.set_coefficients(density, viscosity, c0, iterate ? &level_iterates[level] : nullptr);
+        op.set_cut_cell_matrices(level + 1 == n_levels ?
+                                   fine.get_operator().get_cut_cell_matrices() :
+                                   std::vector<FullMatrix<double>>());
         auto inverse_diagonal = std::make_shared<DiagonalMatrix<VectorType>>();
         op.compute_diagonal(inverse_diagonal->get_vector());
         for (auto &entry : inverse_diagonal->get_vector())
@@ -227,6 +215,9 @@ namespace fdparticle
     // A's constrained velocity rows hold only their diagonal.
     constrained_rows.clear();
     const IndexSet &owned = operators.back().get_matrix_free().get_vector_partitioner()->locally_owned_range();
+    const std::vector<unsigned int> &system_position = fine.get_system_positions();
+    const types::global_dof_index    first_owned =
+      system.blocks.range[Utilities::MPI::this_mpi_process(system.r_fe.get_mpi_communicator())][0];
     for (unsigned int i = 0; i < system_position.size(); ++i)
       if (constraints.back().is_constrained(owned.nth_index_in_set(i)))
         constrained_rows.emplace_back(
@@ -237,8 +228,9 @@ namespace fdparticle
   void VelocityMultigrid<dim>::vmult(TrilinosWrappers::MPI::Vector &      dst,
                                      const TrilinosWrappers::MPI::Vector &src) const
   {
-    const double *s = src.trilinos_vector()[0];
-    double *      d = dst.trilinos_vector()[0];
+    const double *                   s               = src.trilinos_vector()[0];
+    double *                         d               = dst.trilinos_vector()[0];
+    const std::vector<unsigned int> &system_position = fine.get_system_positions();
     for (unsigned int i = 0; i < system_position.size(); ++i)
       in.local_element(i) = s[system_position[i]];
     for (const auto &[i, inverse] : constrained_rows)

@@ -67,6 +67,18 @@ namespace fdparticle
     void assemble_on_cells(const std::vector<bool> &        cells,
                            TrilinosWrappers::SparseMatrix &matrix) const override;
 
+    /// What a multigrid below it reads (after set_jacobian()): the velocity DoFs and
+    /// their constraints, each owned one's place among the system's owned DoFs, the
+    /// coefficients, the iterate on the velocity DoFs (nullptr: Stokes) and the operator.
+    const DoFHandler<dim> &          get_dof_handler() const { return velocity_dofs; }
+    const AffineConstraints<double> &get_constraints() const { return constraints; }
+    const std::vector<unsigned int> &get_system_positions() const { return system_position; }
+    double                           get_density() const { return density; }
+    double                           get_viscosity() const { return viscosity; }
+    double                           get_c0() const { return c0; }
+    const VectorType *get_iterate() const { return convection ? &iterate : nullptr; }
+    const VelocityOperator<dim> &    get_operator() const { return op; }
+
   private:
     void build();
 
@@ -78,6 +90,8 @@ namespace fdparticle
     const AffineConstraints<double> *  system_constraints = nullptr;
     types::global_dof_index            first_owned        = 0;
     bool                               current            = false;
+    double                             density = 1, viscosity = 1, c0 = 0;
+    bool                               convection = false;
 
     DoFHandler<dim>           velocity_dofs;
     AffineConstraints<double> constraints;

@@ -19,6 +19,7 @@
 #include <deal.II/multigrid/multigrid.h>
 
 #include <fdparticle/fem/domain.h>
+#include <fdparticle/fem/velocity_block.h>
 #include <fdparticle/fem/velocity_operator.h>
 #include <fdparticle/solvers/newton_system.h>
 #include <fdparticle/solvers/velocity_block_inverse.h>
@@ -38,14 +39,15 @@ namespace fdparticle
    * Q2 operator, assembled. The Q2 levels are the mesh coarsened globally one level at a
    * time (Domain::create_coarsened_copy), each with its own hanging-node, periodicity and
    * wall constraints, so the particle-following refinement needs no interface terms;
-   * MGTwoLevelTransfer moves between them (and from Q2 to Q1). The finest level is K
-   * exactly (its cut cells by their assembled matrices); the coarser ones use the Gauss
-   * rule in every cell.
+   * MGTwoLevelTransfer moves between them (and from Q2 to Q1). The finest level is the
+   * VelocityBlock's (its DoFs, constraints and cut cells' matrices), with the Jacobian
+   * it held when the block preconditioner called initialize(); the coarser ones use the
+   * Gauss rule in every cell.
    *
-   * Use: reinit() whenever the system's DoFs change, set_jacobian() after each assembly
-   * of the Jacobian; the block preconditioner calls initialize() when it rebuilds, which
-   * takes the last Jacobian given. Vectors of vmult() are in the system's velocity block
-   * numbering (NewtonSystem::Blocks); constrained rows are divided by A's diagonal.
+   * Use: reinit() whenever the system's DoFs change (after the VelocityBlock's); the
+   * block preconditioner calls initialize() when it rebuilds. Vectors of vmult() are in
+   * the system's velocity block numbering (NewtonSystem::Blocks); constrained rows are
+   * divided by A's diagonal.
    */
   template <int dim>
   class VelocityMultigrid : public VelocityBlockInverse
@@ -53,17 +55,13 @@ namespace fdparticle
   public:
     using VectorType = typename VelocityOperator<dim>::VectorType;
 
-    VelocityMultigrid(const Mapping<dim> &mapping, const Domain<dim> &domain);
+    /// fine: the finest level, which must outlive the multigrid.
+    VelocityMultigrid(const Mapping<dim> &mapping, const Domain<dim> &domain,
+                      const VelocityBlock<dim> &fine);
     ~VelocityMultigrid() override;
 
-    /// The system's mesh or DoFs changed: the levels are rebuilt by the next set_jacobian().
-    void reinit(const DoFHandler<dim> &system_dofs, const NewtonSystem::Blocks &blocks);
-
-    /// The Jacobian's velocity block: ρ, μ, the BDF weight c0, the iterate (owned system
-    /// layout; nullptr: Stokes) and the cut cells' matrices (NavierStokesAssembler).
-    void set_jacobian(const double density, const double viscosity, const double c0,
-                      const TrilinosWrappers::MPI::Vector *iterate,
-                      std::vector<FullMatrix<double>>      cut_matrices);
+    /// The system's mesh or DoFs changed: the levels are rebuilt by the next initialize().
+    void reinit();
 
     void initialize(const NewtonSystem &                                   system,
                     const TrilinosWrappers::PreconditionAMG::AdditionalData &amg) override;
@@ -76,18 +74,16 @@ namespace fdparticle
   private:
     void build_levels();
 
-    const Mapping<dim> &  mapping;
-    const Domain<dim> &   domain;
-    const FESystem<dim>   fe, coarse_fe;
-    const DoFHandler<dim> *system_dofs = nullptr;
-    /// The system's first DoF on this rank.
-    types::global_dof_index first_owned = 0;
-    bool                    levels_current = false;
+    const Mapping<dim> &      mapping;
+    const Domain<dim> &       domain;
+    const VelocityBlock<dim> &fine;
+    const FESystem<dim>       fe, coarse_fe;
+    bool                      levels_current = false;
 
     /// Per level, coarsest first: the base mesh twice (Q1, then Q2), then the finer
-    /// meshes; the last is the system's own mesh.
+    /// meshes; the last is the system's own mesh, with the VelocityBlock's DoFs.
     std::vector<std::shared_ptr<const parallel::distributed::Triangulation<dim>>> meshes;
-    std::vector<std::unique_ptr<DoFHandler<dim>>>                             dof_handlers;
+    std::vector<std::shared_ptr<const DoFHandler<dim>>>                       dof_handlers;
     MGLevelObject<AffineConstraints<double>>                                 constraints;
     MGLevelObject<VelocityOperator<dim>>                                      operators;
     MGLevelObject<MGTwoLevelTransfer<dim, VectorType>>                        transfers;
@@ -106,18 +102,10 @@ namespace fdparticle
     std::unique_ptr<PreconditionMG<dim, VectorType, MGTransferGlobalCoarsening<dim, VectorType>>>
       preconditioner;
 
-    /// For each owned DoF of the finest level, its place among the system's owned DoFs
-    /// (the velocity block comes first in each rank's range).
-    std::vector<unsigned int> system_position;
     /// The finest level's constrained owned DoFs (local index) and 1 / A's diagonal there.
     std::vector<std::pair<unsigned int, double>> constrained_rows;
-
-    /// The last Jacobian given (set_jacobian), taken by initialize().
-    double                          density = 1, viscosity = 1, c0 = 0;
-    bool                            convection = false;
-    VectorType                      iterate;
-    MGLevelObject<VectorType>       level_iterates;
-    std::vector<FullMatrix<double>> cut_matrices;
+    /// The iterate of the Jacobian on each level (Navier–Stokes).
+    MGLevelObject<VectorType> level_iterates;
 
     mutable VectorType in, out;
   };

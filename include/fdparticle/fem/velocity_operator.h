@@ -66,6 +66,7 @@ namespace fdparticle
      * what NavierStokesAssembler::assemble gives.
      */
     void set_cut_cell_matrices(std::vector<FullMatrix<double>> matrices);
+    const std::vector<FullMatrix<double>> &get_cut_cell_matrices() const { return cut_matrices; }
 
     void initialize_dof_vector(VectorType &v) const { matrix_free.initialize_dof_vector(v); }
 

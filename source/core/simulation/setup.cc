@@ -62,9 +62,9 @@ namespace fdparticle
         velocity_block->reinit(dof_handler, system.blocks, update_constraints);
         system.blocks.velocity_product = velocity_block;
         if (!velocity_multigrid)
-          velocity_multigrid =
-            std::make_shared<VelocityMultigrid<dim>>(assembler.get_mapping(), domain);
-        velocity_multigrid->reinit(dof_handler, system.blocks);
+          velocity_multigrid = std::make_shared<VelocityMultigrid<dim>>(assembler.get_mapping(),
+                                                                        domain, *velocity_block);
+        velocity_multigrid->reinit();
         system.blocks.velocity_inverse = velocity_multigrid;
       }
     owned_dofs = dof_handler.locally_owned_dofs();

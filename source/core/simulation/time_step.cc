@@ -4,7 +4,6 @@
 #include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
 #include <fdparticle/fem/velocity_block.h>
-#include <fdparticle/fem/velocity_multigrid.h>
 
 #include <cmath>
 #include <iomanip>
@@ -104,17 +103,14 @@ namespace fdparticle
     problem.assemble = [&](const bool with_jacobian) {
       TimerOutput::Scope t(*timer, with_jacobian ? "assemble system" : "assemble residual");
       std::vector<FullMatrix<double>> cut_matrices;
-      const bool multigrid = with_jacobian && velocity_multigrid;
+      const bool matrix_free = with_jacobian && velocity_block;
       last_integrals = assembler.assemble(dof_handler, solution_ghost, history_ghost, c,
                                           update_constraints, with_jacobian, system,
-                                          multigrid ? &cut_matrices : nullptr);
-      if (multigrid)
+                                          matrix_free ? &cut_matrices : nullptr);
+      if (matrix_free)
         velocity_block->set_jacobian(fluid.density, fluid.viscosity, c[0],
-                                     fluid.convection ? &solution : nullptr, cut_matrices);
-      if (multigrid)
-        velocity_multigrid->set_jacobian(fluid.density, fluid.viscosity, c[0],
-                                         fluid.convection ? &solution : nullptr,
-                                         std::move(cut_matrices));
+                                     fluid.convection ? &solution : nullptr,
+                                     std::move(cut_matrices));
       interactions.add_to_particle_rows(particles, c, system.r_p,
                                         with_jacobian ? &system.D : nullptr);
       if (with_jacobian)
