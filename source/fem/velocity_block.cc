@@ -8,6 +8,50 @@
 
 namespace fdparticle
 {
+  namespace
+  {
+    /// For each owned DoF of velocity_dofs (a velocity-only DoFHandler on the system's
+    /// mesh), its place among the system's owned DoFs, whose first is first_owned; both
+    /// numberings must give each DoF the same owner.
+    template <int dim>
+    std::vector<unsigned int> system_positions(const DoFHandler<dim> &        velocity_dofs,
+                                               const DoFHandler<dim> &        system_dofs,
+                                               const types::global_dof_index first_owned)
+    {
+      // From the cells both share: velocity component c, scalar function a in each.
+      const FiniteElement<dim> &fe = velocity_dofs.get_fe(), &system_fe = system_dofs.get_fe();
+      const IndexSet            owned        = velocity_dofs.locally_owned_dofs();
+      const IndexSet            system_owned = system_dofs.locally_owned_dofs();
+      std::vector<unsigned int> position(owned.n_elements(), numbers::invalid_unsigned_int);
+      std::vector<types::global_dof_index> system_cell_dofs(system_fe.n_dofs_per_cell()),
+        cell_dofs(fe.n_dofs_per_cell());
+      const unsigned int n_scalar = fe.base_element(0).n_dofs_per_cell();
+      for (const auto &cell : velocity_dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(cell_dofs);
+            typename DoFHandler<dim>::active_cell_iterator(&system_dofs.get_triangulation(),
+                                                           cell->level(), cell->index(),
+                                                           &system_dofs)
+              ->get_dof_indices(system_cell_dofs);
+            for (unsigned int c = 0; c < dim; ++c)
+              for (unsigned int a = 0; a < n_scalar; ++a)
+                {
+                  const auto v = cell_dofs[fe.component_to_system_index(c, a)];
+                  if (!owned.is_element(v))
+                    continue;
+                  const auto s = system_cell_dofs[system_fe.component_to_system_index(
+                    Introspection<dim>::first_velocity_component + c, a)];
+                  AssertThrow(system_owned.is_element(s),
+                              ExcMessage("The matrix-free velocity block needs each velocity "
+                                         "DoF owned by the same rank in both numberings."));
+                  position[owned.index_within_set(v)] = s - first_owned;
+                }
+          }
+      return position;
+    }
+  } // namespace
+
   template <int dim>
   void make_velocity_constraints(const Domain<dim> &domain, const DoFHandler<dim> &velocity_dofs,
                                  AffineConstraints<double> &constraints)
@@ -20,44 +64,6 @@ namespace fdparticle
     domain.make_periodicity_constraints(velocity_dofs, constraints);
     domain.make_wall_constraints(velocity_dofs, ComponentMask(dim, true), true, constraints);
     constraints.close();
-  }
-
-  template <int dim>
-  std::vector<unsigned int> system_positions(const DoFHandler<dim> &        velocity_dofs,
-                                             const DoFHandler<dim> &        system_dofs,
-                                             const types::global_dof_index first_owned)
-  {
-    // From the cells both share: velocity component c, scalar function a in each.
-    const FiniteElement<dim> &fe = velocity_dofs.get_fe(), &system_fe = system_dofs.get_fe();
-    const IndexSet            owned        = velocity_dofs.locally_owned_dofs();
-    const IndexSet            system_owned = system_dofs.locally_owned_dofs();
-    std::vector<unsigned int> position(owned.n_elements(), numbers::invalid_unsigned_int);
-    std::vector<types::global_dof_index> system_cell_dofs(system_fe.n_dofs_per_cell()),
-      cell_dofs(fe.n_dofs_per_cell());
-    const unsigned int n_scalar = fe.base_element(0).n_dofs_per_cell();
-    for (const auto &cell : velocity_dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(cell_dofs);
-          typename DoFHandler<dim>::active_cell_iterator(&system_dofs.get_triangulation(),
-                                                         cell->level(), cell->index(),
-                                                         &system_dofs)
-            ->get_dof_indices(system_cell_dofs);
-          for (unsigned int c = 0; c < dim; ++c)
-            for (unsigned int a = 0; a < n_scalar; ++a)
-              {
-                const auto v = cell_dofs[fe.component_to_system_index(c, a)];
-                if (!owned.is_element(v))
-                  continue;
-                const auto s = system_cell_dofs[system_fe.component_to_system_index(
-                  Introspection<dim>::first_velocity_component + c, a)];
-                AssertThrow(system_owned.is_element(s),
-                            ExcMessage("The matrix-free velocity block needs each velocity "
-                                       "DoF owned by the same rank in both numberings."));
-                position[owned.index_within_set(v)] = s - first_owned;
-              }
-        }
-    return position;
   }
 
   template <int dim>
@@ -200,10 +206,6 @@ namespace fdparticle
                                           AffineConstraints<double> &);
   template void make_velocity_constraints(const Domain<3> &, const DoFHandler<3> &,
                                           AffineConstraints<double> &);
-  template std::vector<unsigned int> system_positions(const DoFHandler<2> &, const DoFHandler<2> &,
-                                                      const types::global_dof_index);
-  template std::vector<unsigned int> system_positions(const DoFHandler<3> &, const DoFHandler<3> &,
-                                                      const types::global_dof_index);
   template class VelocityBlock<2>;
   template class VelocityBlock<3>;
 } // namespace fdparticle

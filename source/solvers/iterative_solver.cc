@@ -58,7 +58,8 @@ namespace fdparticle
                         "the block preconditioner (doc/method.md §8). multigrid: one geometric "
                         "multigrid V-cycle on the matrix-free velocity operator over the mesh "
                         "coarsened level by level down to the base mesh, then linear elements "
-                        "there, ML on those; no velocity matrix, 1.1-1.5 times faster than amg "
+                        "there, ML on those; no velocity matrix, also not in the Newton "
+                        "matrix (its products are matrix-free), 1.1-1.9 times faster than amg "
                         "(doc/scaling.md). amg: one ML V-cycle on the assembled velocity "
                         "matrix.");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),

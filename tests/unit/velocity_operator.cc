@@ -198,14 +198,8 @@ namespace
     const auto distribute = [&](DoFHandler<dim> &dofs, const FiniteElement<dim> &fe,
                                 AffineConstraints<double> &c) {
       dofs.distribute_dofs(fe);
-      IndexSet relevant;
-      DoFTools::extract_locally_relevant_dofs(dofs, relevant);
-      c.reinit(relevant);
-      DoFTools::make_hanging_node_constraints(dofs, c);
-      domain.make_periodicity_constraints(dofs, c);
-      domain.make_wall_constraints(dofs, ComponentMask(dim, true), true, c);
-      c.close();
-      return relevant;
+      make_velocity_constraints(domain, dofs, c);
+      return c.get_local_lines();
     };
     // The Q2 velocity DoFs, and the operator.
     const FESystem<dim>       velocity_fe(FE_Q<dim>(Introspection<dim>::velocity_degree), dim);

@@ -26,14 +26,6 @@ namespace fdparticle
   void make_velocity_constraints(const Domain<dim> &domain, const DoFHandler<dim> &velocity_dofs,
                                  AffineConstraints<double> &constraints);
 
-  /// For each owned DoF of velocity_dofs (a velocity-only DoFHandler on the system's
-  /// mesh), its place among the system's owned DoFs, whose first is first_owned; both
-  /// numberings must give each DoF the same owner.
-  template <int dim>
-  std::vector<unsigned int> system_positions(const DoFHandler<dim> &        velocity_dofs,
-                                             const DoFHandler<dim> &        system_dofs,
-                                             const types::global_dof_index first_owned);
-
   /**
    * The velocity block K of the Newton matrix on the system's mesh, without a matrix
    * (doc/method.md §8): VelocityOperator at the current Jacobian, the cut cells by their
@@ -96,7 +88,8 @@ namespace fdparticle
     DoFHandler<dim>           velocity_dofs;
     AffineConstraints<double> constraints;
     VelocityOperator<dim>     op;
-    /// See system_positions(); the owned unconstrained DoFs among them.
+    /// For each owned velocity DoF, its place among the system's owned DoFs; the owned
+    /// unconstrained DoFs among them.
     std::vector<unsigned int> system_position, unconstrained;
     /// The operator's cell batch of each active cell (invalid: not owned).
     std::vector<unsigned int> batch_of_cell;
