@@ -320,21 +320,38 @@ namespace fdparticle
 
     const unsigned int     n = own_dofs.get_fe().n_dofs_per_cell();
     const auto &lexicographic = matrix_free.get_shape_info().lexicographic_numbering;
+    // E's rows in FEEvaluation's order: a cell that is not cut projects as Eᵀ (A_K E),
+    // the operator applied to E's columns, without A_K.
+    FullMatrix<double> embedding_evaluated(n, n_coarse), applied;
+    for (unsigned int i = 0; i < n && project; ++i)
+      for (unsigned int a = 0; a < n_coarse; ++a)
+        embedding_evaluated(i, a) = embedding(lexicographic[i], a);
     FullMatrix<double>                   local(n, n), cell_matrix_of_batch(n, n);
     std::vector<types::global_dof_index> dofs(n);
     for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
       {
         const auto cell_iterator = matrix_free.get_cell_iterator(cell, 0);
-        cell_matrix(cell, cell_matrix_of_batch);
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            local(lexicographic[i], lexicographic[j]) =
-              cell_matrix_of_batch(matrix_row_of_evaluation_index[i],
-                                   matrix_row_of_evaluation_index[j]);
+        if (project && !batch_is_cut[cell])
+          {
+            apply_to_columns(cell, embedding_evaluated, applied);
+            embedding_evaluated.Tmmult(projected, applied);
+          }
+        else
+          {
+            cell_matrix(cell, cell_matrix_of_batch);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                local(lexicographic[i], lexicographic[j]) =
+                  cell_matrix_of_batch(matrix_row_of_evaluation_index[i],
+                                       matrix_row_of_evaluation_index[j]);
+            if (project)
+              {
+                projected = 0;
+                projected.triple_product(local, embedding, embedding, true, false);
+              }
+          }
         if (project)
           {
-            projected = 0;
-            projected.triple_product(local, embedding, embedding, true, false);
             typename DoFHandler<dim>::active_cell_iterator(&dof_handler.get_triangulation(),
                                                            cell_iterator->level(),
                                                            cell_iterator->index(), &dof_handler)
@@ -360,26 +377,43 @@ namespace fdparticle
         matrix = cut_matrices[matrix_free.get_cell_iterator(cell, 0)->active_cell_index()];
         return;
       }
-    // Column j is the kernel applied to the unit vector e_j: the cell fills all lanes,
-    // one unit vector in each.
+    // Column j is the operator applied to the unit vector e_j.
+    FullMatrix<double> unit(n, n), columns;
+    for (unsigned int i = 0; i < n; ++i)
+      unit(i, i) = 1;
+    apply_to_columns(cell, unit, columns);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        matrix(matrix_row_of_evaluation_index[i], matrix_row_of_evaluation_index[j]) =
+          columns(i, j);
+  }
+
+  template <int dim>
+  void VelocityOperator<dim>::apply_to_columns(const unsigned int        cell,
+                                               const FullMatrix<double> &in_columns,
+                                               FullMatrix<double> &      out_columns) const
+  {
+    Assert(!batch_is_cut[cell], ExcInternalError());
+    // The cell fills all lanes of the kernel, one column in each.
     using Kernel             = Q2CellKernel<dim>;
     constexpr unsigned int L = Kernel::lanes, nq = Kernel::n_points;
+    const unsigned int     n = in_columns.m(), m = in_columns.n();
+    out_columns.reinit(n, m);
     std::vector<double> in(n * L), out(n * L), lengths(dim * L), volumes(L),
       w(convection ? nq * dim * L : 0), grad_w(convection ? nq * dim * dim * L : 0);
     for (unsigned int l = 0; l < L; ++l)
       load_cell_data(cell, l, lengths.data(), volumes.data(), w.data(), grad_w.data());
-    for (unsigned int first = 0; first < n; first += L)
+    for (unsigned int first = 0; first < m; first += L)
       {
-        std::fill(in.begin(), in.end(), 0.0);
-        for (unsigned int l = 0; l < L && first + l < n; ++l)
-          in[(first + l) * L + l] = 1;
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int l = 0; l < L; ++l)
+            in[i * L + l] = (first + l < m ? in_columns(i, first + l) : 0.0);
         Kernel::apply(in.data(), out.data(), lengths.data(), volumes.data(),
                       convection ? w.data() : nullptr, convection ? grad_w.data() : nullptr,
                       density * c0, density, viscosity);
-        for (unsigned int l = 0; l < L && first + l < n; ++l)
+        for (unsigned int l = 0; l < L && first + l < m; ++l)
           for (unsigned int i = 0; i < n; ++i)
-            matrix(matrix_row_of_evaluation_index[i], matrix_row_of_evaluation_index[first + l]) =
-              out[i * L + l];
+            out_columns(i, first + l) = out[i * L + l];
       }
   }
 

@@ -114,6 +114,11 @@ namespace fdparticle
     void load_cell_data(const unsigned int cell, const unsigned int l, double *lengths,
                         double *volumes, double *w, double *grad_w) const;
 
+    /// out_columns = A_K in_columns for cell batch `cell`, not cut, both with rows in
+    /// FEEvaluation's order of the cell's values.
+    void apply_to_columns(const unsigned int cell, const FullMatrix<double> &in_columns,
+                          FullMatrix<double> &out_columns) const;
+
     void local_apply(const MatrixFree<dim, double> &data, VectorType &dst, const VectorType &src,
                      const std::pair<unsigned int, unsigned int> &cell_range) const;
 
