@@ -52,7 +52,8 @@ namespace fdparticle
     bool has_pattern(const TrilinosWrappers::SparsityPattern &sparsity) const;
 
     /// The entries of A between velocity DoFs (rows and columns), over all ranks: the
-    /// part of A a matrix-free velocity operator could leave out. Collective.
+    /// part of A that Blocks::velocity_product leaves out where it is set (then only the
+    /// constrained rows' diagonal). Collective.
     types::global_dof_index velocity_block_nonzeros() const;
 
     /// Lay out the system for a step: A gets the pattern (rebuilt only if new_pattern, else
