@@ -332,10 +332,7 @@ namespace fdparticle
       {
         system.A.compress(VectorOperation::add);
         if (system.n_particle_unknowns() > 0)
-          {
-            system.B.compress(VectorOperation::add);
-            system.C_transposed.compress(VectorOperation::add);
-          }
+          system.compress_border(VectorOperation::add);
       }
 
     ParticleIntegrals<dim>::sum_over_ranks(copy.integrals, dof_handler.get_communicator());

@@ -307,8 +307,8 @@ namespace fdparticle
     for (unsigned int j = 0; j < size; ++j)
       {
         l_in = 0;
-        NewtonSystem::for_each_entry(system->B, [&](const int row, const unsigned int column,
-                                                    const double value) {
+        system->for_each_border_entry(system->B, [&](const int row, const unsigned int column,
+                                                     const double value) {
           Assert(row >= int(o_l) && row < int(o_l + n_l), ExcInternalError());
           if (column % size == j)
             values(l_in)[row - o_l] += value;

@@ -174,13 +174,13 @@ namespace fdparticle
             values[r].push_back(v[k]);
           }
       }
-    NewtonSystem::for_each_entry(system.B, [&](const int r, const unsigned int j, const double v) {
+    system.for_each_border_entry(system.B, [&](const int r, const unsigned int j, const double v) {
       columns[r].push_back(n + j);
       values[r].push_back(v);
     });
     // The rows of C: their non-zeros, gathered on rank 0 as (row, column, value).
     std::vector<double> local_c;
-    NewtonSystem::for_each_entry(system.C_transposed,
+    system.for_each_border_entry(system.C_transposed,
                                  [&](const int r, const unsigned int i, const double v) {
                                    local_c.insert(local_c.end(), {double(i), double(E.GRID(r)), v});
                                  });
@@ -442,7 +442,7 @@ namespace fdparticle
       for (int i = 0; i < n_local; ++i)
         rhs[0][i] = -r[i];
       if (new_schur)
-        NewtonSystem::for_each_entry(system.B,
+        system.for_each_border_entry(system.B,
                                      [&](const int r, const unsigned int j, const double v) {
                                        rhs[j + 1][r] = v;
                                      });
@@ -460,7 +460,7 @@ namespace fdparticle
 
     // G = C·[z0(, Z_1, …, Z_m)]: local products, then one reduction.
     std::vector<double> G(m * n_rhs, 0.0);
-    NewtonSystem::for_each_entry(system.C_transposed,
+    system.for_each_border_entry(system.C_transposed,
                                  [&](const int r, const unsigned int i, const double v) {
                                    for (unsigned int j = 0; j < n_rhs; ++j)
                                      G[i * n_rhs + j] += v * sol[j][r];

@@ -131,8 +131,23 @@ namespace fdparticle
         B.clear();
         C_transposed.clear();
       }
+    border_rows.clear();
     D.resize(m, m);
     r_p.setZero(m);
+  }
+
+  void NewtonSystem::compress_border(const VectorOperation::values op)
+  {
+    border_rows.clear();
+    if (B.m() == 0)
+      return;
+    B.compress(op);
+    C_transposed.compress(op);
+    const Epetra_CrsMatrix &b = B.trilinos_matrix(), &c = C_transposed.trilinos_matrix();
+    Assert(b.RowMap().SameAs(c.RowMap()), ExcInternalError());
+    for (int r = 0; r < b.NumMyRows(); ++r)
+      if (b.NumMyEntries(r) > 0 || c.NumMyEntries(r) > 0)
+        border_rows.push_back(r);
   }
 
   void NewtonSystem::zero(const bool with_matrix)
@@ -159,15 +174,16 @@ namespace fdparticle
   {
     AssertDimension(y.size(), n_particle_unknowns());
     double *xv = x.trilinos_vector()[0];
-    for_each_entry(B, [&](const int r, const unsigned int j, const double v) { xv[r] += v * y[j]; });
+    for_each_border_entry(B,
+                          [&](const int r, const unsigned int j, const double v) { xv[r] += v * y[j]; });
   }
 
   Eigen::VectorXd NewtonSystem::border_product(const TrilinosWrappers::MPI::Vector &x) const
   {
     std::vector<double> g(n_particle_unknowns(), 0.0);
     const double *      xv = x.trilinos_vector()[0];
-    for_each_entry(C_transposed,
-                   [&](const int r, const unsigned int i, const double v) { g[i] += v * xv[r]; });
+    for_each_border_entry(C_transposed,
+                          [&](const int r, const unsigned int i, const double v) { g[i] += v * xv[r]; });
     Utilities::MPI::sum(g, r_fe.get_mpi_communicator(), g);
     return Eigen::Map<const Eigen::VectorXd>(g.data(), g.size());
   }

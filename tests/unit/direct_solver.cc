@@ -121,10 +121,7 @@ namespace
           full(n + j, i) = c;
         }
     if (m > 0)
-      {
-        s.B.compress(VectorOperation::insert);
-        s.C_transposed.compress(VectorOperation::insert);
-      }
+      s.compress_border(VectorOperation::insert);
     for (unsigned int i = 0; i < n; ++i)
       s.r_fe[i] = std::sin(0.3 * i) + shift;
     s.r_fe.compress(VectorOperation::insert);

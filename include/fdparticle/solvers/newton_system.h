@@ -79,10 +79,14 @@ namespace fdparticle
     void add_border(const Eigen::VectorXd &y, TrilinosWrappers::MPI::Vector &x) const;
     /// C x, summed over the ranks. Collective.
     Eigen::VectorXd border_product(const TrilinosWrappers::MPI::Vector &x) const;
-    /// f(local row, column, value) for each non-zero owned entry of B or Cᵀ; local rows
-    /// are in the order of r_fe's owned entries.
+    /// Compress B and Cᵀ after their entries are written (op: add or insert) and note
+    /// which owned rows hold any, the few rows the products below walk. Collective.
+    void compress_border(const VectorOperation::values op);
+    /// f(local row, column, value) for each non-zero owned entry of B or Cᵀ (border is one
+    /// of the two), over the rows compress_border noted; local rows are in the order of
+    /// r_fe's owned entries.
     template <typename F>
-    static void for_each_entry(const TrilinosWrappers::SparseMatrix &border, const F &f);
+    void for_each_border_entry(const TrilinosWrappers::SparseMatrix &border, const F &f) const;
 
     /// Zero the residuals, and A, B, C, D too if with_matrix.
     void zero(const bool with_matrix);
@@ -157,16 +161,24 @@ namespace fdparticle
     Eigen::SparseMatrix<double>    D;
     TrilinosWrappers::MPI::Vector  r_fe;
     Eigen::VectorXd                r_p;
+
+  private:
+    /// The owned rows (local numbers, ascending) where B or Cᵀ hold entries: those of the
+    /// particles' cells, a small part of all rows.
+    std::vector<int> border_rows;
   };
 
 
   template <typename F>
-  void NewtonSystem::for_each_entry(const TrilinosWrappers::SparseMatrix &border, const F &f)
+  void NewtonSystem::for_each_border_entry(const TrilinosWrappers::SparseMatrix &border,
+                                           const F &                             f) const
   {
+    Assert(&border == &B || &border == &C_transposed,
+           ExcMessage("for_each_border_entry walks B or C_transposed only."));
     if (border.m() == 0)
       return;
     const Epetra_CrsMatrix &E = border.trilinos_matrix();
-    for (int r = 0; r < E.NumMyRows(); ++r)
+    for (const int r : border_rows)
       {
         int     length;
         double *values;
