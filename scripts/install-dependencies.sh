@@ -5,7 +5,7 @@ set -euo pipefail
 # takes over libblas.so.3 (Debian alternatives); deal.II's dependencies pull in only the
 # reference BLAS, with which the factorization of the 3D sediment scene runs ~5x slower
 # (doc/performance.md). Serial, not pthread: MPI ranks already use the cores.
-packages=(libdeal.ii-dev libeigen3-dev cmake ninja-build g++ openmpi-bin numdiff python3 gnuplot-nox
+packages=(libdeal.ii-dev libmumps-dev libeigen3-dev cmake ninja-build g++ openmpi-bin numdiff python3 gnuplot-nox
           libopenblas0-serial python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

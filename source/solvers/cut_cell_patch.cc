@@ -3,14 +3,9 @@
 #include <fdparticle/solvers/cut_cell_patch.h>
 #include <fdparticle/solvers/mumps.h>
 
-#include <Amesos.h>
-#include <Amesos_BaseSolver.h>
-#include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Import.h>
-#include <Epetra_LinearProblem.h>
 #include <Epetra_Vector.h>
-#include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
 #include <iomanip>
@@ -42,17 +37,17 @@ namespace fdparticle
 
   void CutCellPatch::clear()
   {
-    // The factorization refers to the problem, the problem to the matrix and vectors.
-    solver.reset();
-    problem.reset();
+    factorization.reset();
     matrix.reset();
-    residual.reset();
-    correction.reset();
     rows.reset();
     column_import.reset();
     columns.reset();
     dofs.clear();
     component.clear();
+    rank_rows.clear();
+    rank_offsets.clear();
+    patch_rhs.clear();
+    local_residual.clear();
     factor_memory = 0;
   }
 
@@ -330,43 +325,45 @@ namespace fdparticle
                     ExcInternalError());
       }
     AssertThrow(matrix->FillComplete() == 0, ExcInternalError());
-    residual   = std::make_unique<Epetra_Vector>(patch_map);
-    correction = std::make_unique<Epetra_Vector>(patch_map);
   }
 
   std::string CutCellPatch::factor(const double memory_limit, const MPI_Comm comm)
   {
-    problem = std::make_unique<Epetra_LinearProblem>(matrix.get(), correction.get(),
-                                                     residual.get());
     // MUMPS reads the ordering during its analysis only.
-    std::vector<int> ordering  = mumps::nested_dissection(*matrix, comm);
-    const unsigned long long n = matrix->NumGlobalRows64();
+    std::vector<int>         ordering = mumps::nested_dissection(*matrix, comm);
+    const unsigned long long n        = matrix->NumGlobalRows64();
     auto why = [&](const std::string &reason) {
       clear();
       return reason;
     };
-    Amesos_Mumps *amesos_mumps = nullptr;
+    // This rank's entries of the patch matrix, numbered over all ranks.
+    std::vector<int>    entry_rows, entry_columns;
+    std::vector<double> entry_values;
+    entry_rows.reserve(matrix->NumMyNonzeros());
+    entry_columns.reserve(matrix->NumMyNonzeros());
+    entry_values.reserve(matrix->NumMyNonzeros());
+    for (int r = 0; r < matrix->NumMyRows(); ++r)
+      {
+        const int row = matrix->GRID(r);
+        for_each_entry(*matrix, r, [&](const long long g, const double v) {
+          entry_rows.push_back(row);
+          entry_columns.push_back(static_cast<int>(g));
+          entry_values.push_back(v);
+        });
+      }
+    const int my_rows = matrix->NumMyRows();
+    matrix.reset();
+
+    factorization = std::make_unique<mumps::Factorization>(comm);
     for (int attempt = 0, workspace = mumps::initial_workspace_percent;; ++attempt)
       {
-        // A new analysis needs a new solver (as in DirectSolver).
-        Amesos factory;
-        solver.reset(factory.Create("Amesos_Mumps", *problem));
-        amesos_mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
-        AssertThrow(amesos_mumps != nullptr,
-                    ExcMessage("This Trilinos has no MUMPS (Amesos_Mumps), which the "
-                               "iterative solver's cut-cell patch needs."));
-        Teuchos::ParameterList parameters;
-        Teuchos::ParameterList &controls = parameters.sublist("mumps");
-        controls.set("ICNTL(7)", 1); // the ordering given
-        controls.set("ICNTL(14)", workspace);
-        controls.set("PermIn", ordering.empty() ? static_cast<int *>(nullptr) : ordering.data());
-        AssertThrow(solver->SetParameters(parameters) == 0, ExcInternalError());
-        if (solver->SymbolicFactorization() != 0)
-          return why("MUMPS's analysis failed (INFOG(1) = " +
-                     std::to_string(amesos_mumps->GetINFOG()[0]) + ")");
-        // INFOG(16): the analysis' estimate of the factorization's memory on the rank that
-        // needs most (MB); the same on every rank.
-        const double estimate = 1e6 * amesos_mumps->GetINFOG()[15];
+        // The analysis takes the entries; a retry hands them over again.
+        const int analysis = factorization->analyse(n, std::vector<int>(entry_rows),
+                                                    std::vector<int>(entry_columns),
+                                                    entry_values, ordering, workspace);
+        if (analysis < 0)
+          return why("MUMPS's analysis failed (INFOG(1) = " + std::to_string(analysis) + ")");
+        const double estimate = factorization->estimated_memory();
         if (memory_limit > 0 && estimate > memory_limit)
           {
             std::ostringstream s;
@@ -375,16 +372,25 @@ namespace fdparticle
               << memory_limit / 1e9 << " GB allowed";
             return why(s.str());
           }
-        if (solver->NumericFactorization() == 0)
+        const int info = factorization->factor();
+        if (info >= 0)
           break;
-        const int info = amesos_mumps->GetINFOG()[0];
         if (!mumps::short_of_workspace(info) || attempt == mumps::max_workspace_retries)
           return why(info == mumps::singular      ? "MUMPS found it singular" :
                      info == mumps::out_of_memory ? "MUMPS could not allocate its factors" :
                                                     "MUMPS's INFOG(1) = " + std::to_string(info));
         workspace *= mumps::workspace_growth;
       }
-    factor_memory = 1e6 * amesos_mumps->GetINFOG()[17];
+    factor_memory = factorization->memory();
+
+    const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+    rank_rows.resize(root ? dealii::Utilities::MPI::n_mpi_processes(comm) : 0);
+    MPI_Gather(&my_rows, 1, MPI_INT, rank_rows.data(), 1, MPI_INT, 0, comm);
+    rank_offsets.assign(rank_rows.size(), 0);
+    for (unsigned int p = 1; p < rank_rows.size(); ++p)
+      rank_offsets[p] = rank_offsets[p - 1] + rank_rows[p - 1];
+    patch_rhs.resize(root ? n : 0);
+    local_residual.resize(my_rows);
     return "";
   }
 
@@ -395,7 +401,7 @@ namespace fdparticle
     columns->Import(x.trilinos_vector(), *column_import, Insert);
     const double *xc = columns->Values();
     const double *rv = r.trilinos_vector().Values();
-    double *      ri = residual->Values();
+    double *      ri = local_residual.data();
     for (unsigned int i = 0; i < dofs.size(); ++i)
       {
         int     n;
@@ -406,10 +412,15 @@ namespace fdparticle
         for (int k = 0; k < n; ++k)
           ri[i] -= v[k] * xc[c[k]];
       }
-    AssertThrow(solver->Solve() == 0,
+    const MPI_Comm comm = x.get_mpi_communicator();
+    MPI_Gatherv(local_residual.data(), dofs.size(), MPI_DOUBLE, patch_rhs.data(),
+                rank_rows.data(), rank_offsets.data(), MPI_DOUBLE, 0, comm);
+    AssertThrow(factorization->solve(patch_rhs) >= 0,
                 ExcMessage("MUMPS failed to solve with the factored cut-cell patch."));
+    MPI_Scatterv(patch_rhs.data(), rank_rows.data(), rank_offsets.data(), MPI_DOUBLE,
+                 local_residual.data(), dofs.size(), MPI_DOUBLE, 0, comm);
     double *xv = x.trilinos_vector().Values();
     for (unsigned int i = 0; i < dofs.size(); ++i)
-      xv[dofs[i]] += (*correction)[i];
+      xv[dofs[i]] += local_residual[i];
   }
 } // namespace fdparticle

@@ -4,6 +4,7 @@
 #include <fdparticle/solvers/mumps.h>
 
 #include <Epetra_CrsMatrix.h>
+#include <dmumps_c.h>
 #include <metis.h>
 
 #include <algorithm>
@@ -102,6 +103,99 @@ namespace fdparticle
       for (idx_t i = 0; i < n; ++i)
         perm_in[i] = iperm[i] + 1;
       return perm_in;
+    }
+
+    struct Factorization::Instance
+    {
+      DMUMPS_STRUC_C      id = {};
+      bool                root;
+      std::vector<int>    rows, columns;
+      std::vector<double> values;
+    };
+
+    Factorization::Factorization(const MPI_Comm comm)
+      : instance(std::make_unique<Instance>())
+    {
+      DMUMPS_STRUC_C &id = instance->id;
+      instance->root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      id.comm_fortran    = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
+      id.par             = 1; // rank 0 works too
+      id.sym             = 0; // unsymmetric
+      id.job             = -1;
+      dmumps_c(&id);
+      // No output: the caller reports INFOG(1).
+      id.icntl[0]  = -1;
+      id.icntl[1]  = -1;
+      id.icntl[2]  = -1;
+      id.icntl[3]  = 0;
+      id.icntl[17] = 3; // ICNTL(18): the entries distributed over the ranks
+    }
+
+    Factorization::~Factorization()
+    {
+      instance->id.job = -2;
+      dmumps_c(&instance->id);
+    }
+
+    int Factorization::analyse(const int n, std::vector<int> rows, std::vector<int> columns,
+                               std::vector<double> values, std::vector<int> &ordering,
+                               const int workspace_percent)
+    {
+      AssertDimension(rows.size(), values.size());
+      AssertDimension(columns.size(), values.size());
+      // MUMPS numbers from 1.
+      for (int &i : rows)
+        ++i;
+      for (int &j : columns)
+        ++j;
+      instance->rows    = std::move(rows);
+      instance->columns = std::move(columns);
+      instance->values  = std::move(values);
+      DMUMPS_STRUC_C &id = instance->id;
+      id.n               = n;
+      id.nnz_loc         = instance->values.size();
+      id.irn_loc         = instance->rows.data();
+      id.jcn_loc         = instance->columns.data();
+      id.a_loc           = instance->values.data();
+      id.icntl[6]        = ordering.empty() ? 7 : 1; // ICNTL(7): given, or MUMPS's choice
+      id.perm_in         = ordering.empty() ? nullptr : ordering.data();
+      id.icntl[13]       = workspace_percent; // ICNTL(14)
+      id.job             = 1;
+      dmumps_c(&id);
+      return id.infog[0];
+    }
+
+    double Factorization::estimated_memory() const { return 1e6 * instance->id.infog[15]; }
+
+    int Factorization::factor()
+    {
+      DMUMPS_STRUC_C &id = instance->id;
+      id.job             = 2;
+      dmumps_c(&id);
+      // The factors are MUMPS's own now; a solve does not read the entries.
+      instance->rows    = std::vector<int>();
+      instance->columns = std::vector<int>();
+      instance->values  = std::vector<double>();
+      id.irn_loc = id.jcn_loc = nullptr;
+      id.a_loc                = nullptr;
+      return id.infog[0];
+    }
+
+    double Factorization::memory() const { return 1e6 * instance->id.infog[17]; }
+
+    int Factorization::solve(std::vector<double> &b)
+    {
+      DMUMPS_STRUC_C &id = instance->id;
+      if (instance->root)
+        {
+          AssertDimension(b.size(), static_cast<std::size_t>(id.n));
+          id.rhs = b.data();
+        }
+      id.nrhs = 1;
+      id.lrhs = id.n;
+      id.job  = 3;
+      dmumps_c(&id);
+      return id.infog[0];
     }
   } // namespace mumps
 } // namespace fdparticle

@@ -3,6 +3,7 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <fdparticle/solvers/mumps.h>
 #include <fdparticle/solvers/newton_system.h>
 
 #include <memory>
@@ -10,10 +11,8 @@
 #include <string>
 #include <vector>
 
-class Amesos_BaseSolver;
 class Epetra_CrsMatrix;
 class Epetra_Import;
-class Epetra_LinearProblem;
 class Epetra_Vector;
 
 namespace fdparticle
@@ -94,7 +93,7 @@ namespace fdparticle
     /// all ranks in the order of the DoFs. Collective.
     void assemble(const NewtonSystem &system, const std::vector<bool> &row_cells);
     /// Factor the patch matrix unless it would need more than memory_limit bytes on one
-    /// rank (0: no limit); returns why not, or an empty string. Collective.
+    /// rank (0: no limit), and release it; returns why not, or an empty string. Collective.
     std::string factor(const double memory_limit, const MPI_Comm comm);
 
     /// This rank's patch DoFs (local rows of A, ascending) and the component of each.
@@ -105,16 +104,18 @@ namespace fdparticle
     std::unique_ptr<Epetra_CrsMatrix> rows;
     std::unique_ptr<Epetra_Import>    column_import;
     std::unique_ptr<Epetra_Vector>    columns;
-    /// The patch matrix, with the residual and correction vectors of its solve (its rows'
-    /// layout), and MUMPS's factorization of it, ordered by METIS (mumps::nested_dissection).
-    /// MUMPS's default threshold pivoting (CNTL(1) = 0.01) is kept: it solves the patch to
-    /// a relative residual of about 10⁻⁹, a smaller threshold (10⁻⁸) leaves 10⁻⁵ for
-    /// little saved time.
+    /// The patch matrix until it is factored, and MUMPS's factorization of it, ordered by
+    /// METIS (mumps::nested_dissection). MUMPS's default threshold pivoting (CNTL(1) =
+    /// 0.01) is kept: it solves the patch to a relative residual of about 10⁻⁹, a smaller
+    /// threshold (10⁻⁸) leaves 10⁻⁵ for little saved time.
     std::unique_ptr<Epetra_CrsMatrix>     matrix;
-    std::unique_ptr<Epetra_Vector>        residual, correction;
-    std::unique_ptr<Epetra_LinearProblem> problem;
-    std::unique_ptr<Amesos_BaseSolver>    solver;
+    std::unique_ptr<mumps::Factorization> factorization;
     double                                factor_memory = 0;
+    /// The patch rows of each rank (counts and offsets in the patch numbering, on rank
+    /// 0), to gather the residual and scatter the correction, and the whole right-hand
+    /// side of a solve, on rank 0.
+    std::vector<int>            rank_rows, rank_offsets;
+    mutable std::vector<double> patch_rhs, local_residual;
   };
 } // namespace fdparticle
 

@@ -3,6 +3,7 @@
 
 #include <mpi.h>
 
+#include <memory>
 #include <vector>
 
 class Epetra_CrsMatrix;
@@ -32,6 +33,44 @@ namespace fdparticle
     /// Whether INFOG(1) says that the working space estimated by the analysis was short
     /// (−8, −9, −14, −15, −17): then analyse again with more (ICNTL(14)).
     bool short_of_workspace(const int infog_1);
+
+    /**
+     * MUMPS's LU factorization through its C interface, of an n × n matrix whose entries
+     * the ranks of a communicator hold in parts (MUMPS's distributed assembled input), for
+     * one right-hand side at a time gathered on rank 0. Unlike Amesos it keeps no copy of
+     * the matrix once factored.
+     */
+    class Factorization
+    {
+    public:
+      explicit Factorization(const MPI_Comm comm);
+      ~Factorization();
+      Factorization(const Factorization &) = delete;
+      Factorization &operator=(const Factorization &) = delete;
+
+      /// Analyse the n × n matrix of which this rank holds the entries (rows[k], columns[k],
+      /// values[k]), numbered 0 … n − 1, with the pivot order `ordering` (PERM_IN, on rank 0;
+      /// empty: MUMPS's own) and workspace_percent for ICNTL(14). The entries are kept until
+      /// factor(). Returns INFOG(1). Collective.
+      int analyse(const int n, std::vector<int> rows, std::vector<int> columns,
+                  std::vector<double> values, std::vector<int> &ordering,
+                  const int workspace_percent);
+      /// The analysis' estimate of the factorization's memory on the rank that needs most,
+      /// in bytes (INFOG(16)); the same on every rank.
+      double estimated_memory() const;
+      /// Factor the analysed matrix and release its entries. Returns INFOG(1). Collective.
+      int factor();
+      /// Memory of the factorization on the rank that needed most, in bytes (INFOG(18)).
+      double memory() const;
+      /// Overwrite b (the whole right-hand side on rank 0, ignored elsewhere) with the
+      /// solution. Returns INFOG(1). Collective.
+      int solve(std::vector<double> &b);
+
+    private:
+      /// MUMPS's instance (its C structure) and the entries it reads until factored.
+      struct Instance;
+      std::unique_ptr<Instance> instance;
+    };
 
     /// MUMPS reports large counts as −(count in millions).
     inline double count(const int v) { return v >= 0 ? double(v) : -1e6 * v; }
