@@ -11,8 +11,9 @@ class Epetra_CrsMatrix;
 namespace fdparticle
 {
   /**
-   * What the two users of MUMPS (through Amesos) share: the direct solver of the whole
-   * system (DirectSolver) and the iterative solver's cut-cell patch (CutCellPatch).
+   * What the two users of MUMPS share: the direct solver of the whole system
+   * (DirectSolver, through Amesos) and the iterative solver's cut-cell patch
+   * (CutCellPatch, through Factorization below).
    */
   namespace mumps
   {
