@@ -172,7 +172,7 @@ namespace fdparticle
       DMUMPS_STRUC_C &id = instance->id;
       id.job             = 2;
       dmumps_c(&id);
-      // The factors are MUMPS's own now; a solve does not read the entries.
+      // Once factored, MUMPS holds its own copy: a solve does not read the entries.
       instance->rows    = std::vector<int>();
       instance->columns = std::vector<int>();
       instance->values  = std::vector<double>();
