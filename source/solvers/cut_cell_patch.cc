@@ -354,13 +354,12 @@ namespace fdparticle
     const int my_rows = matrix->NumMyRows();
     matrix.reset();
 
-    factorization = std::make_unique<mumps::Factorization>(comm);
+    factorization = std::make_unique<mumps::Factorization>(comm, n, std::move(entry_rows),
+                                                           std::move(entry_columns),
+                                                           std::move(entry_values));
     for (int attempt = 0, workspace = mumps::initial_workspace_percent;; ++attempt)
       {
-        // The analysis takes the entries; a retry hands them over again.
-        const int analysis = factorization->analyse(n, std::vector<int>(entry_rows),
-                                                    std::vector<int>(entry_columns),
-                                                    entry_values, ordering, workspace);
+        const int analysis = factorization->analyse(ordering, workspace);
         if (analysis < 0)
           return why("MUMPS's analysis failed (INFOG(1) = " + std::to_string(analysis) + ")");
         const double estimate = factorization->estimated_memory();

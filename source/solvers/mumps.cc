@@ -113,9 +113,20 @@ namespace fdparticle
       std::vector<double> values;
     };
 
-    Factorization::Factorization(const MPI_Comm comm)
+    Factorization::Factorization(const MPI_Comm comm, const int n, std::vector<int> rows,
+                                 std::vector<int> columns, std::vector<double> values)
       : instance(std::make_unique<Instance>())
     {
+      AssertDimension(rows.size(), values.size());
+      AssertDimension(columns.size(), values.size());
+      // MUMPS numbers from 1.
+      for (int &i : rows)
+        ++i;
+      for (int &j : columns)
+        ++j;
+      instance->rows    = std::move(rows);
+      instance->columns = std::move(columns);
+      instance->values  = std::move(values);
       DMUMPS_STRUC_C &id = instance->id;
       instance->root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
       id.comm_fortran    = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
@@ -129,6 +140,11 @@ namespace fdparticle
       id.icntl[2]  = -1;
       id.icntl[3]  = 0;
       id.icntl[17] = 3; // ICNTL(18): the entries distributed over the ranks
+      id.n         = n;
+      id.nnz_loc   = instance->values.size();
+      id.irn_loc   = instance->rows.data();
+      id.jcn_loc   = instance->columns.data();
+      id.a_loc     = instance->values.data();
     }
 
     Factorization::~Factorization()
@@ -137,26 +153,9 @@ namespace fdparticle
       dmumps_c(&instance->id);
     }
 
-    int Factorization::analyse(const int n, std::vector<int> rows, std::vector<int> columns,
-                               std::vector<double> values, std::vector<int> &ordering,
-                               const int workspace_percent)
+    int Factorization::analyse(std::vector<int> &ordering, const int workspace_percent)
     {
-      AssertDimension(rows.size(), values.size());
-      AssertDimension(columns.size(), values.size());
-      // MUMPS numbers from 1.
-      for (int &i : rows)
-        ++i;
-      for (int &j : columns)
-        ++j;
-      instance->rows    = std::move(rows);
-      instance->columns = std::move(columns);
-      instance->values  = std::move(values);
       DMUMPS_STRUC_C &id = instance->id;
-      id.n               = n;
-      id.nnz_loc         = instance->values.size();
-      id.irn_loc         = instance->rows.data();
-      id.jcn_loc         = instance->columns.data();
-      id.a_loc           = instance->values.data();
       id.icntl[6]        = ordering.empty() ? 7 : 1; // ICNTL(7): given, or MUMPS's choice
       id.perm_in         = ordering.empty() ? nullptr : ordering.data();
       id.icntl[13]       = workspace_percent; // ICNTL(14)
@@ -172,6 +171,8 @@ namespace fdparticle
       DMUMPS_STRUC_C &id = instance->id;
       id.job             = 2;
       dmumps_c(&id);
+      if (id.infog[0] < 0)
+        return id.infog[0];
       // Once factored, MUMPS holds its own copy: a solve does not read the entries.
       instance->rows    = std::vector<int>();
       instance->columns = std::vector<int>();

@@ -44,22 +44,23 @@ namespace fdparticle
     class Factorization
     {
     public:
-      explicit Factorization(const MPI_Comm comm);
+      /// The n × n matrix of which this rank holds the entries (rows[k], columns[k],
+      /// values[k]), numbered 0 … n − 1; they are kept until factored. Collective.
+      Factorization(const MPI_Comm comm, const int n, std::vector<int> rows,
+                    std::vector<int> columns, std::vector<double> values);
       ~Factorization();
       Factorization(const Factorization &) = delete;
       Factorization &operator=(const Factorization &) = delete;
 
-      /// Analyse the n × n matrix of which this rank holds the entries (rows[k], columns[k],
-      /// values[k]), numbered 0 … n − 1, with the pivot order `ordering` (PERM_IN, on rank 0;
-      /// empty: MUMPS's own) and workspace_percent for ICNTL(14). The entries are kept until
-      /// factor(). Returns INFOG(1). Collective.
-      int analyse(const int n, std::vector<int> rows, std::vector<int> columns,
-                  std::vector<double> values, std::vector<int> &ordering,
-                  const int workspace_percent);
+      /// Analyse the matrix with the pivot order `ordering` (PERM_IN, on rank 0; empty:
+      /// MUMPS's own) and workspace_percent for ICNTL(14); again after a factorization
+      /// that was short of workspace. Returns INFOG(1). Collective.
+      int analyse(std::vector<int> &ordering, const int workspace_percent);
       /// The analysis' estimate of the factorization's memory on the rank that needs most,
       /// in bytes (INFOG(16)); the same on every rank.
       double estimated_memory() const;
-      /// Factor the analysed matrix and release its entries. Returns INFOG(1). Collective.
+      /// Factor the analysed matrix; once it succeeds, release the entries. Returns
+      /// INFOG(1). Collective.
       int factor();
       /// Memory of the factorization on the rank that needed most, in bytes (INFOG(18)).
       double memory() const;
