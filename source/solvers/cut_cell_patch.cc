@@ -8,6 +8,7 @@
 #include <Epetra_Vector.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <map>
 #include <numeric>
@@ -44,6 +45,9 @@ namespace fdparticle
     columns.reset();
     dofs.clear();
     component.clear();
+    negated.clear();
+    group.clear();
+    is_symmetric = false;
     rank_rows.clear();
     rank_offsets.clear();
     patch_rhs.clear();
@@ -240,6 +244,10 @@ namespace fdparticle
   {
     const Epetra_CrsMatrix &E  = system.A.trilinos_matrix();
     const Epetra_Comm &     ec = E.Comm();
+    negated.resize(dofs.size());
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      negated[i] = system.blocks.locate(E.GRID64(dofs[i])).first ==
+                   NewtonSystem::Blocks::multiplier;
 
     // The patch DoFs' rows of A (a local copy: the rows stay with their owners) and how
     // to fetch the entries of a vector at their columns.
@@ -261,23 +269,29 @@ namespace fdparticle
         Epetra_CrsMatrix velocity_rows(Copy, row_map, 0);
         velocity_rows.Import(velocity.trilinos_matrix(), local, Insert);
         velocity_rows.FillComplete(E.DomainMap(), E.RangeMap());
-        auto                        sum = std::make_unique<Epetra_CrsMatrix>(Copy, row_map, 0);
-        std::map<long long, double> entries;
-        std::vector<int>            cols;
-        std::vector<double>         values;
+        auto sum = std::make_unique<Epetra_CrsMatrix>(Copy, row_map, 0);
+        std::vector<std::pair<long long, double>> entries;
+        std::vector<int>                          cols;
+        std::vector<double>                       values;
         for (int r = 0; r < rows->NumMyRows(); ++r)
           {
+            // Both rows' entries by column, those of a column summed.
             entries.clear();
-            for_each_entry(*rows, r, [&](const long long g, const double v) { entries[g] += v; });
-            for_each_entry(velocity_rows, r,
-                           [&](const long long g, const double v) { entries[g] += v; });
+            auto add = [&](const long long g, const double v) { entries.emplace_back(g, v); };
+            for_each_entry(*rows, r, add);
+            for_each_entry(velocity_rows, r, add);
+            std::sort(entries.begin(), entries.end(),
+                      [](const auto &a, const auto &b) { return a.first < b.first; });
             cols.clear();
             values.clear();
             for (const auto &[g, v] : entries)
-              {
-                cols.push_back(static_cast<int>(g));
-                values.push_back(v);
-              }
+              if (!cols.empty() && cols.back() == g)
+                values.back() += v;
+              else
+                {
+                  cols.push_back(static_cast<int>(g));
+                  values.push_back(v);
+                }
             AssertThrow(sum->InsertGlobalValues(row_map.GID(r), cols.size(), values.data(),
                                                 cols.data()) == 0,
                         ExcInternalError());
@@ -299,6 +313,22 @@ namespace fdparticle
         number[dofs[i]] = patch_map.GID(i);
         part[dofs[i]]   = component[i];
       }
+    // Each multiplier DoF is ordered with the velocity DoF at its node and component
+    // (the same local number in its block, and in the patch with it).
+    const auto &range = system.blocks.range[dealii::Utilities::MPI::this_mpi_process(
+      system.r_fe.get_mpi_communicator())];
+    const int   to_velocity = range[NewtonSystem::Blocks::multiplier] - range[0];
+    group.resize(dofs.size());
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      {
+        group[i] = patch_map.GID(i);
+        if (negated[i])
+          {
+            const auto u = std::lower_bound(dofs.begin(), dofs.end(), dofs[i] - to_velocity);
+            if (u != dofs.end() && *u == dofs[i] - to_velocity)
+              group[i] = patch_map.GID(u - dofs.begin());
+          }
+      }
     Epetra_Vector column_number(rows->ColMap()), column_part(rows->ColMap());
     column_number.Import(number, *column_import, Insert);
     column_part.Import(part, *column_import, Insert);
@@ -318,7 +348,7 @@ namespace fdparticle
           if (column_number[c[k]] >= 0 && column_part[c[k]] == component[r])
             {
               cols.push_back(static_cast<int>(column_number[c[k]]));
-              values.push_back(v[k]);
+              values.push_back(negated[r] ? -v[k] : v[k]);
             }
         AssertThrow(matrix->InsertGlobalValues(patch_map.GID(r), cols.size(), values.data(),
                                                cols.data()) == 0,
@@ -330,13 +360,16 @@ namespace fdparticle
   std::string CutCellPatch::factor(const double memory_limit, const MPI_Comm comm)
   {
     // MUMPS reads the ordering during its analysis only.
-    std::vector<int>         ordering = mumps::nested_dissection(*matrix, comm);
+    std::vector<int>         ordering = mumps::nested_dissection(*matrix, comm, group);
+    group.clear();
     const unsigned long long n        = matrix->NumGlobalRows64();
     auto why = [&](const std::string &reason) {
       clear();
       return reason;
     };
-    // This rank's entries of the patch matrix, numbered over all ranks.
+    is_symmetric = test_symmetry();
+    // This rank's entries of the patch matrix (of a symmetric one its lower triangle),
+    // numbered over all ranks.
     std::vector<int>    entry_rows, entry_columns;
     std::vector<double> entry_values;
     entry_rows.reserve(matrix->NumMyNonzeros());
@@ -346,15 +379,19 @@ namespace fdparticle
       {
         const int row = matrix->GRID(r);
         for_each_entry(*matrix, r, [&](const long long g, const double v) {
-          entry_rows.push_back(row);
-          entry_columns.push_back(static_cast<int>(g));
-          entry_values.push_back(v);
+          if (!is_symmetric || g <= row)
+            {
+              entry_rows.push_back(row);
+              entry_columns.push_back(static_cast<int>(g));
+              entry_values.push_back(v);
+            }
         });
       }
     const int my_rows = matrix->NumMyRows();
     matrix.reset();
 
-    factorization = std::make_unique<mumps::Factorization>(comm, n, std::move(entry_rows),
+    factorization = std::make_unique<mumps::Factorization>(comm, n, is_symmetric,
+                                                           std::move(entry_rows),
                                                            std::move(entry_columns),
                                                            std::move(entry_values));
     for (int attempt = 0, workspace = mumps::initial_workspace_percent;; ++attempt)
@@ -393,6 +430,29 @@ namespace fdparticle
     return "";
   }
 
+  bool CutCellPatch::test_symmetry() const
+  {
+    const Epetra_Map &map = matrix->RowMap();
+    Epetra_Vector     x(map), y(map), Mx(map), My(map);
+    // Scattered over [−½, ½) by the fractional parts of multiples of two irrationals.
+    for (int i = 0; i < map.NumMyElements(); ++i)
+      {
+        const double g = map.GID64(i);
+        x[i]           = g * 0.6180339887498949 - std::floor(g * 0.6180339887498949) - 0.5;
+        y[i]           = g * 0.7548776662466927 - std::floor(g * 0.7548776662466927) - 0.5;
+      }
+    matrix->Multiply(false, x, Mx);
+    matrix->Multiply(false, y, My);
+    double x_My, y_Mx, x_norm, y_norm, Mx_norm, My_norm;
+    x.Dot(My, &x_My);
+    y.Dot(Mx, &y_Mx);
+    x.Norm2(&x_norm);
+    y.Norm2(&y_norm);
+    Mx.Norm2(&Mx_norm);
+    My.Norm2(&My_norm);
+    return std::abs(x_My - y_Mx) <= 1e-12 * (x_norm * My_norm + y_norm * Mx_norm);
+  }
+
   void CutCellPatch::add_correction(TrilinosWrappers::MPI::Vector &      x,
                                     const TrilinosWrappers::MPI::Vector &r) const
   {
@@ -410,6 +470,8 @@ namespace fdparticle
         ri[i] = rv[dofs[i]];
         for (int k = 0; k < n; ++k)
           ri[i] -= v[k] * xc[c[k]];
+        if (negated[i])
+          ri[i] = -ri[i];
       }
     const MPI_Comm comm = x.get_mpi_communicator();
     MPI_Gatherv(local_residual.data(), dofs.size(), MPI_DOUBLE, patch_rhs.data(),

@@ -244,7 +244,8 @@ namespace fdparticle
                 << " non-zeros, " << velocity_nonzeros << " of them in the velocity block"
                 << "; cut-cell patch " << preconditioner.patch_size()
                 << " unknowns, factored in " << preconditioner.patch_memory() / 1e6
-                << " MB (largest rank); "
+                << " MB (largest rank" << (preconditioner.patch_symmetric() ? ", symmetric" : "")
+                << "); "
                 << (missed_after > 0 ? "reused preconditioner missed after " +
                                          std::to_string(missed_after) + " iterations, " :
                                        std::string())

@@ -8,6 +8,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <numeric>
 
 namespace fdparticle
 {
@@ -21,8 +22,11 @@ namespace fdparticle
              infog_1 == -17;
     }
 
-    std::vector<int> nested_dissection(const Epetra_CrsMatrix &E, const MPI_Comm comm)
+    std::vector<int> nested_dissection(const Epetra_CrsMatrix &E, const MPI_Comm comm,
+                                       const std::vector<int> &group)
     {
+      Assert(group.empty() || group.size() == static_cast<std::size_t>(E.NumMyRows()),
+             ExcDimensionMismatch(group.size(), E.NumMyRows()));
       // Local rows as (global row, global column) pairs, without the diagonal.
       std::vector<int> local_edges;
       local_edges.reserve(2 * E.NumMyNonzeros());
@@ -44,42 +48,75 @@ namespace fdparticle
             }
         }
 
+      // On rank 0: the edges, and the group of every row (each its own without groups).
       const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
       const unsigned int rank    = dealii::Utilities::MPI::this_mpi_process(comm);
-      const int          my_size = local_edges.size();
-      std::vector<int>   sizes(n_ranks), offsets(n_ranks + 1, 0);
-      MPI_Gather(&my_size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm);
-      for (unsigned int p = 0; p < n_ranks; ++p)
-        offsets[p + 1] = offsets[p] + sizes[p];
-      std::vector<int> edges(rank == 0 ? offsets[n_ranks] : 0);
-      MPI_Gatherv(local_edges.data(), my_size, MPI_INT, edges.data(), sizes.data(),
-                  offsets.data(), MPI_INT, 0, comm);
-      local_edges = std::vector<int>();
+      const idx_t        n       = E.NumGlobalRows();
+      auto gather = [&](const std::vector<int> &local) {
+        const int        my_size = local.size();
+        std::vector<int> sizes(n_ranks), offsets(n_ranks + 1, 0);
+        MPI_Gather(&my_size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm);
+        for (unsigned int p = 0; p < n_ranks; ++p)
+          offsets[p + 1] = offsets[p] + sizes[p];
+        std::vector<int> all(rank == 0 ? offsets[n_ranks] : 0);
+        MPI_Gatherv(local.data(), my_size, MPI_INT, all.data(), sizes.data(), offsets.data(),
+                    MPI_INT, 0, comm);
+        return all;
+      };
+      std::vector<int> edges = gather(local_edges);
+      local_edges            = std::vector<int>();
+      std::vector<int> group_of;
+      if (dealii::Utilities::MPI::max(static_cast<int>(group.size()), comm) > 0)
+        group_of = gather(group);
       if (rank != 0)
         return {};
-
-      // Adjacency of the symmetrized graph in CSR form: count, fill both directions,
-      // then sort and remove duplicates row by row.
-      const idx_t      n = E.NumGlobalRows();
-      std::vector<idx_t> degree(n + 1, 0);
-      for (std::size_t e = 0; e < edges.size(); e += 2)
+      AssertThrow(group_of.empty() || group_of.size() == static_cast<std::size_t>(n),
+                  ExcMessage("Every rank names the groups of all its rows, or none does."));
+      if (group_of.empty())
         {
-          ++degree[edges[e] + 1];
-          ++degree[edges[e + 1] + 1];
+          group_of.resize(n);
+          std::iota(group_of.begin(), group_of.end(), 0);
         }
+
+      // The groups, numbered 0 … n_vertices − 1 in the order of their first rows.
+      std::vector<idx_t> group_vertex(n, -1), vertex(n);
+      idx_t              n_vertices = 0;
       for (idx_t i = 0; i < n; ++i)
+        {
+          AssertIndexRange(group_of[i], n);
+          if (group_vertex[group_of[i]] < 0)
+            group_vertex[group_of[i]] = n_vertices++;
+          vertex[i] = group_vertex[group_of[i]];
+        }
+      group_of     = std::vector<int>();
+      group_vertex = std::vector<idx_t>();
+
+      // Adjacency of the symmetrized graph of the groups in CSR form: count, fill both
+      // directions, then sort and remove duplicates row by row.
+      std::vector<idx_t> degree(n_vertices + 1, 0);
+      for (std::size_t e = 0; e < edges.size(); e += 2)
+        if (vertex[edges[e]] != vertex[edges[e + 1]])
+          {
+            ++degree[vertex[edges[e]] + 1];
+            ++degree[vertex[edges[e + 1]] + 1];
+          }
+      for (idx_t i = 0; i < n_vertices; ++i)
         degree[i + 1] += degree[i];
-      std::vector<idx_t> adjacency(degree[n]);
+      std::vector<idx_t> adjacency(degree[n_vertices]);
       std::vector<idx_t> fill(degree.begin(), degree.end() - 1);
       for (std::size_t e = 0; e < edges.size(); e += 2)
         {
-          adjacency[fill[edges[e]]++]     = edges[e + 1];
-          adjacency[fill[edges[e + 1]]++] = edges[e];
+          const idx_t a = vertex[edges[e]], b = vertex[edges[e + 1]];
+          if (a != b)
+            {
+              adjacency[fill[a]++] = b;
+              adjacency[fill[b]++] = a;
+            }
         }
       edges = std::vector<int>();
-      std::vector<idx_t> xadj(n + 1, 0);
+      std::vector<idx_t> xadj(n_vertices + 1, 0);
       idx_t              out = 0;
-      for (idx_t i = 0; i < n; ++i)
+      for (idx_t i = 0; i < n_vertices; ++i)
         {
           auto first = adjacency.begin() + degree[i], last = adjacency.begin() + degree[i + 1];
           std::sort(first, last);
@@ -93,15 +130,19 @@ namespace fdparticle
       idx_t options[METIS_NOPTIONS];
       METIS_SetDefaultOptions(options);
       options[METIS_OPTION_NUMBERING] = 0;
-      std::vector<idx_t> perm(n), iperm(n);
-      idx_t              nv  = n;
+      std::vector<idx_t> perm(n_vertices), iperm(n_vertices);
+      idx_t              nv  = n_vertices;
       const int          ret = METIS_NodeND(&nv, xadj.data(), adjacency.data(), nullptr, options,
                                    perm.data(), iperm.data());
       AssertThrow(ret == METIS_OK, ExcMessage("METIS_NodeND failed."));
-      // iperm[i] is the new (0-based) position of unknown i.
+      // iperm[v] is the new (0-based) position of group v; its rows follow each other.
+      std::vector<int> rows(n);
+      std::iota(rows.begin(), rows.end(), 0);
+      std::stable_sort(rows.begin(), rows.end(),
+                       [&](const int a, const int b) { return iperm[vertex[a]] < iperm[vertex[b]]; });
       std::vector<int> perm_in(n);
-      for (idx_t i = 0; i < n; ++i)
-        perm_in[i] = iperm[i] + 1;
+      for (idx_t k = 0; k < n; ++k)
+        perm_in[rows[k]] = k + 1;
       return perm_in;
     }
 
@@ -113,12 +154,16 @@ namespace fdparticle
       std::vector<double> values;
     };
 
-    Factorization::Factorization(const MPI_Comm comm, const int n, std::vector<int> rows,
-                                 std::vector<int> columns, std::vector<double> values)
+    Factorization::Factorization(const MPI_Comm comm, const int n, const bool symmetric,
+                                 std::vector<int> rows, std::vector<int> columns,
+                                 std::vector<double> values)
       : instance(std::make_unique<Instance>())
     {
       AssertDimension(rows.size(), values.size());
       AssertDimension(columns.size(), values.size());
+      for (std::size_t k = 0; k < rows.size(); ++k)
+        Assert(!symmetric || rows[k] >= columns[k],
+               ExcMessage("A symmetric matrix is given by its lower triangle."));
       // MUMPS numbers from 1.
       for (int &i : rows)
         ++i;
@@ -131,7 +176,7 @@ namespace fdparticle
       instance->root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
       id.comm_fortran    = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
       id.par             = 1; // rank 0 works too
-      id.sym             = 0; // unsymmetric
+      id.sym             = symmetric ? 2 : 0; // LDLᵀ (general symmetric) or LU
       id.job             = -1;
       dmumps_c(&id);
       // No output: the caller reports INFOG(1).

@@ -96,6 +96,8 @@ namespace fdparticle
     types::global_dof_index patch_size() const { return n_patch; }
     /// Peak memory of the patch's factorization in bytes, the largest over the ranks.
     double patch_memory() const { return patch.memory(); }
+    /// Whether the patch was symmetric and factored as such.
+    bool patch_symmetric() const { return patch.symmetric(); }
     /// Wall time of the last initialize() and of the patch's part of it (rank 0's, s).
     double setup_time() const { return setup_seconds; }
     double patch_setup_time() const { return patch_seconds; }

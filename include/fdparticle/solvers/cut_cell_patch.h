@@ -38,7 +38,10 @@ namespace fdparticle
    * components are left out: the patch matrix is block diagonal, one block per component,
    * whatever the partition. All ranks factor it together (MUMPS, each rank's rows where
    * A has them): the patch's rows of A and its residual stay on their owners, and a
-   * large particle's patch is shared by the ranks instead of held up by one. The patch
+   * large particle's patch is shared by the ranks instead of held up by one. With its
+   * multiplier rows negated the patch matrix is symmetric wherever the Jacobian has no
+   * convection (Stokes, a fluid at rest), and is then factored as LDLᵀ: half the
+   * factors of LU, in about the same time. The patch
    * is solved whole: solved approximately per rank where the partition cuts it, FGMRES
    * stalled on 2 ranks at 1 M unknowns (doc/scaling.md). With one ring the FGMRES
    * count stops growing with refinement, and the cheap form of the preconditioner (no
@@ -70,6 +73,8 @@ namespace fdparticle
 
     /// DoFs of the patch among this rank's.
     unsigned int size() const { return dofs.size(); }
+    /// Whether the patch matrix was symmetric and factored as such (LDLᵀ).
+    bool symmetric() const { return is_symmetric; }
     /// Memory that MUMPS allocated for the factorization on the rank that needed most, in
     /// bytes (INFOG(18)); the same on every rank.
     double memory() const { return factor_memory; }
@@ -95,10 +100,24 @@ namespace fdparticle
     /// Factor the patch matrix unless it would need more than memory_limit bytes on one
     /// rank (0: no limit), and release it; returns why not, or an empty string. Collective.
     std::string factor(const double memory_limit, const MPI_Comm comm);
+    /// Whether the patch matrix is symmetric, by x·My = y·Mx for two vectors fixed by the
+    /// patch numbering (the same answer on any number of ranks) to 10⁻¹² of the scale of
+    /// their terms. Collective.
+    bool test_symmetry() const;
 
     /// This rank's patch DoFs (local rows of A, ascending) and the component of each.
     std::vector<int> dofs;
     std::vector<int> component;
+    /// The patch's multiplier rows, which the patch matrix and its right-hand side take
+    /// with the opposite sign: (F1) tests λ with −<λ, v>, (F3) u with +<η, u> (doc/method.md
+    /// §0), so with these rows negated the patch matrix is symmetric wherever A's velocity
+    /// block is (no convection in the Jacobian), and MUMPS factors it as such.
+    std::vector<bool> negated;
+    bool              is_symmetric = false;
+    /// For each of this rank's patch DoFs, the patch number of the DoF it is ordered with
+    /// (mumps::nested_dissection): a multiplier DoF with the velocity DoF at its node and
+    /// component, the others with themselves. Kept until ordered.
+    std::vector<int> group;
     /// The patch DoFs' rows of A (all their columns), for the residual on the patch, and
     /// how to fetch x at their columns.
     std::unique_ptr<Epetra_CrsMatrix> rows;

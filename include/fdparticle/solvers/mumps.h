@@ -24,8 +24,14 @@ namespace fdparticle
      * slower analysis, doc/performance.md). E's rows
      * must be numbered 0 … n − 1 over all ranks. Returns MUMPS's PERM_IN on rank 0 (1-based
      * position of each unknown in the pivot order), an empty vector elsewhere. Collective.
+     *
+     * `group` (one entry per local row of E, or empty) names for each row the row it is
+     * ordered with: METIS orders the graph of the groups, and the rows of a group follow
+     * each other in the order of their numbers. Rows that couple to nearly the same rows
+     * (a velocity and the multiplier at its node) so form a smaller graph for METIS.
      */
-    std::vector<int> nested_dissection(const Epetra_CrsMatrix &E, const MPI_Comm comm);
+    std::vector<int> nested_dissection(const Epetra_CrsMatrix &E, const MPI_Comm comm,
+                                       const std::vector<int> &group = {});
 
     /// INFOG(1) for a numerically singular matrix, and for an allocation that failed
     /// (INFOG(2) then says what it asked for, in entries of its real arrays).
@@ -36,18 +42,22 @@ namespace fdparticle
     bool short_of_workspace(const int infog_1);
 
     /**
-     * MUMPS's LU factorization through its C interface, of an n × n matrix whose entries
+     * MUMPS's factorization through its C interface, of an n × n matrix whose entries
      * the ranks of a communicator hold in parts (MUMPS's distributed assembled input), for
-     * one right-hand side at a time gathered on rank 0. Unlike Amesos it keeps no copy of
-     * the matrix once factored.
+     * one right-hand side at a time gathered on rank 0: LU, or for a symmetric matrix
+     * LDLᵀ with 1 × 1 and 2 × 2 pivots (MUMPS's SYM = 2, which allows an indefinite
+     * matrix and zeros on the diagonal), which holds about half the factors. Unlike
+     * Amesos it keeps no copy of the matrix once factored.
      */
     class Factorization
     {
     public:
       /// The n × n matrix of which this rank holds the entries (rows[k], columns[k],
-      /// values[k]), numbered 0 … n − 1; they are kept until factored. Collective.
-      Factorization(const MPI_Comm comm, const int n, std::vector<int> rows,
-                    std::vector<int> columns, std::vector<double> values);
+      /// values[k]), numbered 0 … n − 1; they are kept until factored. A symmetric
+      /// matrix is given by its entries with rows[k] ≥ columns[k] only. Collective.
+      Factorization(const MPI_Comm comm, const int n, const bool symmetric,
+                    std::vector<int> rows, std::vector<int> columns,
+                    std::vector<double> values);
       ~Factorization();
       Factorization(const Factorization &) = delete;
       Factorization &operator=(const Factorization &) = delete;
