@@ -41,11 +41,11 @@ namespace fdparticle
    * large particle's patch is shared by the ranks instead of held up by one. With its
    * multiplier rows negated the patch matrix is symmetric wherever the Jacobian has no
    * convection (Stokes, a fluid at rest), and is then factored as LDLᵀ: half the
-   * factors of LU, in about the same time. The patch
-   * is solved whole: solved approximately per rank where the partition cuts it, FGMRES
-   * stalled on 2 ranks at 1 M unknowns (doc/scaling.md). With one ring the FGMRES
-   * count stops growing with refinement, and the cheap form of the preconditioner (no
-   * inner solve) converges on 3D scenes.
+   * factors of LU, in about the same time. The patch is solved whole: solved
+   * approximately per rank where the partition cuts it, FGMRES stalled on 2 ranks at
+   * 1 M unknowns (doc/scaling.md). With one ring the FGMRES count stops growing with
+   * refinement, and the cheap form of the preconditioner (no inner solve) converges on
+   * 3D scenes.
    */
   class CutCellPatch
   {
