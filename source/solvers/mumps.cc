@@ -135,14 +135,17 @@ namespace fdparticle
       const int          ret = METIS_NodeND(&nv, xadj.data(), adjacency.data(), nullptr, options,
                                    perm.data(), iperm.data());
       AssertThrow(ret == METIS_OK, ExcMessage("METIS_NodeND failed."));
-      // iperm[v] is the new (0-based) position of group v; its rows follow each other.
-      std::vector<int> rows(n);
-      std::iota(rows.begin(), rows.end(), 0);
-      std::stable_sort(rows.begin(), rows.end(),
-                       [&](const int a, const int b) { return iperm[vertex[a]] < iperm[vertex[b]]; });
+      // iperm[v] is the new (0-based) position of group v; its rows follow each other in
+      // ascending order, from the first position of the group (the rows of the groups
+      // before it counted).
+      std::vector<int> first(n_vertices + 1, 0);
+      for (idx_t i = 0; i < n; ++i)
+        ++first[iperm[vertex[i]] + 1];
+      for (idx_t k = 0; k < n_vertices; ++k)
+        first[k + 1] += first[k];
       std::vector<int> perm_in(n);
-      for (idx_t k = 0; k < n; ++k)
-        perm_in[rows[k]] = k + 1;
+      for (idx_t i = 0; i < n; ++i)
+        perm_in[i] = ++first[iperm[vertex[i]]];
       return perm_in;
     }
 
