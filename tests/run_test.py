@@ -73,6 +73,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 
 import testlib
 
@@ -153,11 +154,20 @@ def run(executable, args, ranks, cwd):
     cmd = [executable] + args
     if ranks > 1:
         cmd = ["bash", MPIRUN, str(ranks)] + cmd
-    else:
-        # A run without mpirun starts no Open MPI daemon (it never spawns processes).
+    session = None
+    if ranks == 1:
+        # A run without mpirun starts no Open MPI daemon (it never spawns processes). Such
+        # runs all take the same job name, so each gets a session directory of its own:
+        # concurrent runs sharing one remove it under each other as they end.
         env["OMPI_MCA_ess_singleton_isolated"] = "1"
+        session = tempfile.mkdtemp(prefix="fdparticle-mpi-")
+        env["OMPI_MCA_orte_tmpdir_base"] = session
     print("running:", " ".join(cmd), flush=True)
-    return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+    try:
+        return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+    finally:
+        if session:
+            shutil.rmtree(session, ignore_errors=True)
 
 
 AXES = testlib.AXES
