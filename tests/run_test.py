@@ -152,22 +152,19 @@ def run(executable, args, ranks, cwd):
     # core (ctest runs other tests beside an MPI run).
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     cmd = [executable] + args
-    if ranks > 1:
-        cmd = ["bash", MPIRUN, str(ranks)] + cmd
-    session = None
-    if ranks == 1:
-        # A run without mpirun starts no Open MPI daemon (it never spawns processes). Such
-        # runs all take the same job name, so each gets a session directory of its own:
-        # concurrent runs sharing one remove it under each other as they end.
-        env["OMPI_MCA_ess_singleton_isolated"] = "1"
-        session = tempfile.mkdtemp(prefix="fdparticle-mpi-")
-        env["OMPI_MCA_orte_tmpdir_base"] = session
-    print("running:", " ".join(cmd), flush=True)
-    try:
+    with tempfile.TemporaryDirectory(prefix="fdparticle-mpi-",
+                                     ignore_cleanup_errors=True) as mpi_tmp:
+        if ranks > 1:
+            cmd = ["bash", MPIRUN, str(ranks)] + cmd
+        else:
+            # A run without mpirun starts no Open MPI daemon (it never spawns processes).
+            # Such runs all take the same job name, so each gets Open MPI's temporary
+            # directory of its own: concurrent runs sharing one remove it under each other
+            # as they end.
+            env["OMPI_MCA_ess_singleton_isolated"] = "1"
+            env["OMPI_MCA_orte_tmpdir_base"] = mpi_tmp
+        print("running:", " ".join(cmd), flush=True)
         return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
-    finally:
-        if session:
-            shutil.rmtree(session, ignore_errors=True)
 
 
 AXES = testlib.AXES
