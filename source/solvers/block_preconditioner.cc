@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <iostream>
-#include <map>
 
 namespace fdparticle
 {
@@ -76,9 +75,18 @@ namespace fdparticle
       system->A.get_mpi_communicator(), false);
     auto                    result = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
 
-    std::map<int, double> row;
-    std::vector<int>      cols;
-    std::vector<double>   vals;
+    // Each column of this rank's part of A: its number in its block, or −1 outside
+    // col_blocks.
+    std::vector<int> column_number(E.NumMyCols(), -1);
+    for (int c = 0; c < E.NumMyCols(); ++c)
+      {
+        const auto [b, j] = blocks.locate(E.GCID(c));
+        if (std::find(col_blocks.begin(), col_blocks.end(), b) != col_blocks.end())
+          column_number[c] = static_cast<int>(j);
+      }
+    std::vector<std::pair<int, double>> row;
+    std::vector<int>                    cols;
+    std::vector<double>                 vals;
     for (unsigned int r = 0; r < owned[row_block].n_elements(); ++r)
       {
         const int local = local_offset[row_block] + r;
@@ -88,18 +96,20 @@ namespace fdparticle
         E.ExtractMyRowView(local, n, v, c);
         row.clear();
         for (int k = 0; k < n; ++k)
-          {
-            const auto [b, j] = blocks.locate(E.GCID(c[k]));
-            if (std::find(col_blocks.begin(), col_blocks.end(), b) != col_blocks.end())
-              row[static_cast<int>(j)] += v[k];
-          }
+          if (column_number[c[k]] >= 0)
+            row.emplace_back(column_number[c[k]], v[k]);
+        std::sort(row.begin(), row.end(),
+                  [](const auto &a, const auto &b) { return a.first < b.first; });
         cols.clear();
         vals.clear();
         for (const auto &[j, value] : row)
-          {
-            cols.push_back(j);
-            vals.push_back(value);
-          }
+          if (!cols.empty() && cols.back() == j)
+            vals.back() += value;
+          else
+            {
+              cols.push_back(j);
+              vals.push_back(value);
+            }
         result->InsertGlobalValues(static_cast<int>(blocks.locate(E.GRID(local)).second),
                                    cols.size(), vals.data(), cols.data());
       }
@@ -189,6 +199,7 @@ namespace fdparticle
                              large_3d_smoother_sweeps :
                              smoother_sweeps);
     amg.aggregation_threshold = velocity_aggregation_threshold;
+    amg.coarse_type           = coarse_solver;
     velocity_inverse = system->blocks.velocity_inverse;
     if (velocity_inverse)
       velocity_inverse->initialize(*system, amg);
@@ -278,7 +289,8 @@ namespace fdparticle
     AssertThrow(error == 0, ExcInternalError());
     pressure_laplacian->FillComplete(G->RowMap(), G->RowMap());
     TrilinosWrappers::PreconditionAMG::AdditionalData pressure_data;
-    pressure_data.elliptic = true;
+    pressure_data.elliptic    = true;
+    pressure_data.coarse_type = coarse_solver;
     pressure_amg.initialize(*pressure_laplacian, pressure_data);
   }
 
