@@ -142,7 +142,7 @@ namespace fdparticle
     static constexpr double       velocity_aggregation_threshold   = 0.02;
     static constexpr double       multiplier_aggregation_threshold = 0.05;
     /// ML's solver on its coarsest level (up to 2000 rows, of the multiplier block about a
-    /// quarter full): MUMPS factors it in about half of KLU's time.
+    /// quarter full, where a multifrontal factorization beats KLU's; doc/history.md).
     static constexpr const char *coarse_solver = "Amesos-MUMPS";
 
     /// The rows of block row_block of A with the columns of the blocks col_blocks, all
