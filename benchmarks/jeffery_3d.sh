@@ -22,7 +22,9 @@ exe="${EXE:-$top/build/fdparticle}"
 end_time="${END_TIME:-9}"
 levels="${LEVELS:-3}"
 work="${WORK:-$top/benchmarks/work/jeffery_3d_levels$levels}"
-b_over_h="$(/usr/bin/python3 -c "print(round(0.1 / (2 / 6 / 2**$levels), 2))")"
+# The spheroid's semi-axes, the base cells across the box of width 2, the time step.
+a=0.2 b=0.1 cells=6 dt=0.1
+b_over_h="$(/usr/bin/python3 -c "print(round($b / (2 / $cells / 2**$levels), 2))")"
 png="$top/doc/shapes_jeffery_3d.png"
 [ "$levels" = 3 ] || png="$top/doc/shapes_jeffery_3d_levels$levels.png"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
@@ -35,7 +37,7 @@ set Gravity = 0, 0, 0
 subsection Geometry
   set Lower corner = -1, -1, -1
   set Upper corner = 1, 1, 1
-  set Subdivisions = 6, 6, 6
+  set Subdivisions = $cells, $cells, $cells
   set Periodic directions = x, z
 end
 subsection Boundary conditions
@@ -47,7 +49,7 @@ subsection Fluid
   set Convection = false
 end
 subsection Particles
-  set Particles = 0, 0, 0 : ellipsoid 0.2, 0.1, 0.1, 0, 1, 0, -45 : 1
+  set Particles = 0, 0, 0 : ellipsoid $a, $b, $b, 0, 1, 0, -45 : 1
 end
 subsection Solver
   set Linear solver = iterative
@@ -59,7 +61,7 @@ subsection Refinement
   set Particle refinement levels = $levels
 end
 subsection Time
-  set Time step = 0.1
+  set Time step = $dt
   set End time = $end_time
 end
 subsection Output
@@ -70,11 +72,11 @@ PRM
 /usr/bin/time -f "%e %M" -o "$work/orbit.time" "$exe" "$work/orbit.prm" > "$work/orbit.log" 2>&1 ||
   { echo "the run failed (see $work/orbit.log)"; exit 1; }
 read -r seconds kb < "$work/orbit.time"
-result="$(/usr/bin/python3 "$top/benchmarks/jeffery_orbit_3d.py" "$work/orbit" 0.2 0.1 1 1 \
+result="$(/usr/bin/python3 "$top/benchmarks/jeffery_orbit_3d.py" "$work/orbit" "$a" "$b" 1 1 \
   "$png" | tail -1)"
 csv="$top/doc/shapes_jeffery_3d.csv"
 header="turned_rad,time_to_turn_error,max_axis_deviation_deg,orbit_constant_start,orbit_constant_drift,b_over_h,dt,end_time,wall_seconds,peak_mb,date,commit,machine"
-row="$result,$b_over_h,0.1,$end_time,$seconds,$((kb / 1024)),$stamp"
+row="$result,$b_over_h,$dt,$end_time,$seconds,$((kb / 1024)),$stamp"
 # Keep the rows of the other b/h; this run's row replaces its own.
 { echo "$header"
   { [ -f "$csv" ] && tail -n +2 "$csv" | awk -F, -v bh="$b_over_h" '$6 != bh'
