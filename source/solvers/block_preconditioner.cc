@@ -6,7 +6,6 @@
 #include <fdparticle/solvers/block_preconditioner.h>
 
 #include <EpetraExt_MatrixMatrix.h>
-#include <EpetraExt_Transpose_RowMatrix.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
 #include <Epetra_Vector.h>
@@ -265,12 +264,12 @@ namespace fdparticle
       inverse_mass[i] = (m[i] > 0 ? 1.0 / m[i] : 0.0);
     Epetra_CrsMatrix G_scaled(*G);
     G_scaled.RightScale(inverse_mass);
-    // Gᵀ formed explicitly: EpetraExt's product with a transposed second factor is many
-    // times slower than the plain product.
-    EpetraExt::RowMatrix_Transpose transpose;
-    Epetra_CrsMatrix &             G_transposed = dynamic_cast<Epetra_CrsMatrix &>(transpose(*G));
-    Epetra_CrsMatrix               product(Copy, G->RowMap(), 0);
-    int error = EpetraExt::MatrixMatrix::Multiply(G_scaled, false, G_transposed, false, product);
+    // Gᵀ is A's velocity–pressure block, already extracted (the u–p blocks are
+    // transposes, doc/method.md §3): no transpose is formed, and EpetraExt's product with
+    // a transposed second factor is many times slower than the plain product.
+    Assert(gradient_matrix, ExcInternalError());
+    Epetra_CrsMatrix product(Copy, G->RowMap(), 0);
+    int error = EpetraExt::MatrixMatrix::Multiply(G_scaled, false, *gradient_matrix, false, product);
     AssertThrow(error == 0, ExcInternalError());
 
     // The pressure level is in L's kernel, and a pinned pressure DoF has an empty row:

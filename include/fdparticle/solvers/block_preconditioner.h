@@ -154,11 +154,11 @@ namespace fdparticle
 
     /// The parts of initialize(), one per block, in the order they must run (the particle
     /// block uses the multiplier AMG):
-    /// the AMGs of K and A_λλ + A_λu, and A_uλ;
+    /// the AMGs of K and A_λλ + A_λu, and A_uλ and A_up;
     void initialize_velocity_and_multiplier();
     /// the cell-local viscous term of S_p⁻¹;
     void initialize_pressure_cells();
-    /// L and its AMG (Cahouet–Chabard's inertial term of S_p⁻¹);
+    /// L and its AMG (Cahouet–Chabard's inertial term of S_p⁻¹; Gᵀ is A_up);
     void initialize_pressure_laplacian();
     /// the LU of the particle unknowns' Schur complement D − C S_λ⁻¹ B, particle by particle.
     void initialize_particle_block();
