@@ -262,14 +262,14 @@ namespace fdparticle
     const double *m = values(system->blocks.velocity_mass);
     for (int i = 0; i < inverse_mass.MyLength(); ++i)
       inverse_mass[i] = (m[i] > 0 ? 1.0 / m[i] : 0.0);
-    Epetra_CrsMatrix G_scaled(*G);
-    G_scaled.RightScale(inverse_mass);
+    // G M_u⁻¹, in place: G itself is not needed again.
+    G->RightScale(inverse_mass);
     // Gᵀ is A's velocity–pressure block, already extracted (the u–p blocks are
     // transposes, doc/method.md §3): no transpose is formed, and EpetraExt's product with
     // a transposed second factor is many times slower than the plain product.
     Assert(gradient_matrix, ExcInternalError());
     Epetra_CrsMatrix product(Copy, G->RowMap(), 0);
-    int error = EpetraExt::MatrixMatrix::Multiply(G_scaled, false, *gradient_matrix, false, product);
+    int error = EpetraExt::MatrixMatrix::Multiply(*G, false, *gradient_matrix, false, product);
     AssertThrow(error == 0, ExcInternalError());
 
     // The pressure level is in L's kernel, and a pinned pressure DoF has an empty row:
