@@ -3,6 +3,7 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
 
+#include <fdparticle/solvers/free_unknowns.h>
 #include <fdparticle/solvers/iterative_solver.h>
 
 #include <cmath>
@@ -20,8 +21,8 @@ namespace fdparticle
                         "counts as failed (the step is then retried with a smaller time step).");
       prm.declare_entry("Krylov basis size", "100", Patterns::Integer(2),
                         "Iterative solver: GMRES and FGMRES restart after this many iterations. "
-                        "Each basis vector costs one vector of the system's size with the cheap "
-                        "preconditioner (GMRES), two with the inner solve (FGMRES), allocated only "
+                        "Each basis vector costs one vector of the unconstrained unknowns with "
+                        "the cheap preconditioner (GMRES), two with the inner solve (FGMRES), allocated only "
                         "when used; "
                         "a restart loses what the basis knew and costs iterations, so raise it "
                         "together with Cheap iterations (doc/scaling.md).");
@@ -149,16 +150,21 @@ namespace fdparticle
       inner_before = preconditioner.inner_iterations();
       parts_before = now;
     };
+    // The Krylov vectors hold the free unknowns only.
+    const FreeUnknowns                        free(*op, system);
+    const OnFreeUnknowns<BorderedOperator>    matrix{free, *op};
+    const OnFreeUnknowns<BlockPreconditioner> preconditioned{free, preconditioner};
     BorderedOperator::BlockVector rhs, solution;
-    op->reinit_vector(rhs);
-    op->reinit_vector(solution);
     {
-      const double *r = system.r_fe.trilinos_vector()[0];
-      double *      b = rhs.block(0).trilinos_vector()[0];
-      for (int i = 0; i < rhs.block(0).trilinos_vector().MyLength(); ++i)
-        b[i] = -r[i];
+      BorderedOperator::BlockVector full;
+      op->reinit_vector(full);
+      full.block(0) = system.r_fe;
+      full.block(0) *= -1;
+      op->set_particle_part(full, -system.r_p);
+      free.reinit_vector(rhs);
+      free.restrict(full, rhs);
     }
-    op->set_particle_part(rhs, -system.r_p);
+    free.reinit_vector(solution);
 
     const double rhs_norm = rhs.l2_norm();
     using FGMRES          = SolverFGMRES<BorderedOperator::BlockVector>;
@@ -186,7 +192,7 @@ namespace fdparticle
         preconditioner.inner_solve = false;
         try
           {
-            gmres.solve(*op, solution, rhs, preconditioner);
+            gmres.solve(matrix, solution, rhs, preconditioned);
             converged = true;
           }
         catch (const SolverControl::NoConvergence &)
@@ -214,7 +220,7 @@ namespace fdparticle
         FGMRES        fgmres(control, FGMRES::AdditionalData(basis_size));
         try
           {
-            fgmres.solve(*op, solution, rhs, preconditioner);
+            fgmres.solve(matrix, solution, rhs, preconditioned);
           }
         catch (const SolverControl::NoConvergence &e)
           {
@@ -242,7 +248,8 @@ namespace fdparticle
                 << info.inner_iterations << " inner), relative residual " << info.residual << " for "
                 << tolerance << "; Newton matrix " << system.A.n_nonzero_elements()
                 << " non-zeros, " << velocity_nonzeros << " of them in the velocity block"
-                << "; cut-cell patch " << preconditioner.patch_size()
+                << "; Krylov vectors of the " << free.n_free() << " free of "
+                << free.n_full() << " unknowns; cut-cell patch " << preconditioner.patch_size()
                 << " unknowns, factored in " << preconditioner.patch_memory() / 1e6
                 << " MB (largest rank" << (preconditioner.patch_symmetric() ? ", symmetric" : "")
                 << "); "
@@ -275,9 +282,12 @@ namespace fdparticle
           drifted = true;
       }
 
+    BorderedOperator::BlockVector full;
+    op->reinit_vector(full);
+    free.extend(solution, full);
     x.reinit(system.r_fe.locally_owned_elements(), system.r_fe.get_mpi_communicator());
-    x = solution.block(0);
-    y = op->particle_part(solution);
+    x = full.block(0);
+    y = op->particle_part(full);
     return info;
   }
 } // namespace fdparticle

@@ -31,6 +31,9 @@ namespace fdparticle
     /// v laid out for this operator, zero.
     void reinit_vector(BlockVector &v) const;
 
+    /// The layout of the particle block: all on rank 0.
+    const IndexSet &particle_layout() const { return particle_dofs; }
+
     /// dst = [A B; C D] src.
     void vmult(BlockVector &dst, const BlockVector &src) const;
 

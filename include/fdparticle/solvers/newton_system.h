@@ -142,6 +142,10 @@ namespace fdparticle
       /// The diagonal of the velocity mass matrix (0 at constrained DoFs), in r_fe's
       /// layout, written with the pressure masses.
       TrilinosWrappers::MPI::Vector velocity_mass;
+      /// The owned DoFs (local numbers, ascending) that no constraint of the Newton
+      /// correction fixes: the unknowns of the Krylov vectors (FreeUnknowns). Written with
+      /// A's pattern each step.
+      std::vector<unsigned int> free_dofs;
       /// The unknowns of one free particle (its velocity and rotations), consecutive in
       /// the particle block: the size of the diagonal blocks of D.
       unsigned int particle_block_size = 0;

@@ -263,6 +263,11 @@ namespace fdparticle
                   assembler.border_pattern(support, update_constraints, owned_dofs,
                                            relevant_dofs, comm),
                   comm);
+    std::vector<unsigned int> &free = system.blocks.free_dofs;
+    free.clear();
+    for (unsigned int i = 0; i < owned_dofs.n_elements(); ++i)
+      if (!update_constraints.is_constrained(owned_dofs.nth_index_in_set(i)))
+        free.push_back(i);
     linear_solver->operator_changed();
   }
 

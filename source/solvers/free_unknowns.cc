@@ -1,0 +1,48 @@
+#include <deal.II/base/mpi.h>
+
+#include <fdparticle/solvers/free_unknowns.h>
+
+namespace fdparticle
+{
+  FreeUnknowns::FreeUnknowns(const BorderedOperator &op, const NewtonSystem &system)
+    : op(op)
+    , free_dofs(system.blocks.free_dofs)
+    , n_all(system.r_fe.size())
+  {
+    const MPI_Comm comm = system.r_fe.get_mpi_communicator();
+    const unsigned long long n_local = free_dofs.size();
+    // Each rank's free unknowns follow those of the ranks before it.
+    unsigned long long first = 0;
+    MPI_Exscan(&n_local, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      first = 0;
+    layout.set_size(Utilities::MPI::sum(n_local, comm));
+    layout.add_range(first, first + n_local);
+    op.reinit_vector(wide_src);
+    op.reinit_vector(wide_dst);
+  }
+
+  void FreeUnknowns::reinit_vector(BlockVector &v) const
+  {
+    v.reinit(std::vector<IndexSet>{layout, op.particle_layout()},
+             wide_src.block(0).get_mpi_communicator());
+  }
+
+  void FreeUnknowns::restrict(const BlockVector &full, BlockVector &v) const
+  {
+    const double *f = full.block(0).trilinos_vector()[0];
+    double *      r = v.block(0).trilinos_vector()[0];
+    for (std::size_t i = 0; i < free_dofs.size(); ++i)
+      r[i] = f[free_dofs[i]];
+    v.block(1) = full.block(1);
+  }
+
+  void FreeUnknowns::extend(const BlockVector &v, BlockVector &full) const
+  {
+    const double *r = v.block(0).trilinos_vector()[0];
+    double *      f = full.block(0).trilinos_vector()[0];
+    for (std::size_t i = 0; i < free_dofs.size(); ++i)
+      f[free_dofs[i]] = r[i];
+    full.block(1) = v.block(1);
+  }
+} // namespace fdparticle
