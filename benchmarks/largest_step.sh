@@ -36,9 +36,7 @@ for n in $sizes; do
     continue
   fi
   read -r wall kb < <(tail -1 "$d/time")
-  # "cut-cell patch N unknowns, factored in M MB ... built in A s (patch B s), iterations
-  # C s (... its patch D s; ..."
-  parts=$(grep -m1 'iterative solver:' "$d/log" |
-    sed -E 's/.*cut-cell patch ([0-9]+) unknowns, factored in ([0-9.]+) MB.*built in ([0-9.]+) s \(patch ([0-9.]+) s\), iterations ([0-9.]+) s .* its patch ([0-9.]+) s;.*/\3,\4,\5,\6,\1,\2/')
+  parts=$(/usr/bin/python3 "$top/scripts/solver-statistics.py" "$d/log" setup_seconds \
+    patch_setup_seconds iterate_seconds patch_apply_seconds patch_unknowns patch_mb)
   echo "$(date -u +%F),$commit,$n,$ranks,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations wall_seconds),$wall,$((kb / 1024)),$parts" | tee -a "$csv"
 done

@@ -35,6 +35,6 @@ for variant in cheap exact exact_without_patch; do
     echo "$variant failed (see $d/log)"
     continue
   fi
-  residual=$(grep -m1 'iterative solver:' "$d/log" | sed -E 's/.*relative residual ([0-9.e+-]+) for.*/\1/')
+  residual=$(/usr/bin/python3 "$top/scripts/solver-statistics.py" "$d/log" relative_residual)
   echo "$n,$variant,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations),$residual,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last wall_seconds),$date,$commit" | tee -a "$csv"
 done

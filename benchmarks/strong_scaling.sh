@@ -36,9 +36,8 @@ for n in $sizes; do
       continue
     fi
     read -r wall kb < "$d/time"
-    # "built in A s (patch B s), iterations C s (... D s, its patch E s; this solve: ...)"
-    parts=$(grep -m1 'iterative solver:' "$d/log" |
-      sed -E 's/.*built in ([0-9.]+) s \(patch ([0-9.]+) s\), iterations ([0-9.]+) s .* its patch ([0-9.]+) s;.*/\1,\2,\3,\4/')
+    parts=$(/usr/bin/python3 "$top/scripts/solver-statistics.py" "$d/log" setup_seconds \
+      patch_setup_seconds iterate_seconds patch_apply_seconds)
     echo "$n,$ranks,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations wall_seconds),$wall,$((kb / 1024)),$parts" | tee -a "$csv"
   done
 done

@@ -40,10 +40,9 @@ end
         continue
       fi
       read -r wall kb < "$d.time"
-      # "built in A s (patch . s), iterations B s (...; this solve: operator products C s,
-      # velocity V-cycles D s, multiplier V-cycles E s, particle block F s)"
-      parts=$(grep -m1 'iterative solver:' "$d.log" | sed -E \
-        's/.*built in ([0-9.]+) s .*, iterations ([0-9.]+) s .*operator products ([0-9.e+-]+) s, velocity V-cycles ([0-9.e+-]+) s, multiplier V-cycles ([0-9.e+-]+) s, particle block ([0-9.e+-]+) s\)/\1,\2,\3,\4,\5,\6/')
+      parts=$(/usr/bin/python3 "$top/scripts/solver-statistics.py" "$d.log" setup_seconds \
+        iterate_seconds product_seconds velocity_cycle_seconds multiplier_cycle_seconds \
+        particle_block_seconds)
       echo "$pair,$ranks,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations),$wall,$((kb / 1024)),$(section 'assemble system' "$d.log"),$(section 'assemble residual' "$d.log"),$(section solve "$d.log"),$parts" | tee -a "$csv"
     done
   done

@@ -66,10 +66,9 @@ for c in $cases; do
       levels=$(awk '/^  set Global refinements/ {g = $5} /^  set Particle refinement levels/ {p = $6}
                     END {print g + p + 2}' "$d/scene.prm")
       [ "$vp" = amg ] && levels=1
-      # "Newton matrix N non-zeros ...; built in A s (patch B s), iterations C s (...; this
-      # solve: operator products E s, velocity V-cycles D s, ...)"
-      parts=$(grep -m1 'iterative solver:' "$d/log" |
-        sed -E 's/.*Newton matrix ([0-9]+) non-zeros.*built in ([0-9.e-]+) s \(patch ([0-9.e-]+) s\), iterations ([0-9.e-]+) s .*operator products ([0-9.e-]+) s, velocity V-cycles ([0-9.e-]+) s.*/\2,\3,\4,\6,\5,\1/')
+      parts=$(/usr/bin/python3 "$top/scripts/solver-statistics.py" "$d/log" setup_seconds \
+        patch_setup_seconds iterate_seconds velocity_cycle_seconds product_seconds \
+        matrix_nonzeros)
       echo "$kind,$size,$ranks,$vp,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs),$levels,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last linear_iterations inner_iterations wall_seconds),$wall,$((kb / 1024)),$parts,$date,$commit" | tee -a "$csv"
     done
   done
