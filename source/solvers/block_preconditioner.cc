@@ -7,6 +7,7 @@
 
 #include <EpetraExt_MatrixMatrix.h>
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_Import.h>
 #include <Epetra_Map.h>
 #include <Epetra_Vector.h>
 
@@ -70,12 +71,16 @@ namespace fdparticle
   {
     const Epetra_CrsMatrix &E      = system->A.trilinos_matrix();
     const auto &            blocks = system->blocks;
-    const Epetra_Map        map    = owned[row_block].make_trilinos_map(
-      system->A.get_mpi_communicator(), false);
-    auto                    result = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
+    const MPI_Comm          comm   = system->A.get_mpi_communicator();
+    const bool              multiplier_rows = row_block == multiplier_block;
+    const bool              multiplier_columns =
+      std::find(col_blocks.begin(), col_blocks.end(), multiplier_block) != col_blocks.end();
+    const Epetra_Map map = (multiplier_rows ? owned_free_multipliers : owned[row_block])
+                             .make_trilinos_map(comm, false);
+    auto result = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
 
-    // Each column of this rank's part of A: its number in its block, or −1 outside
-    // col_blocks.
+    // Each column of this rank's part of A: its number in its block (among the free
+    // multipliers in the multiplier numbering), or −1 outside col_blocks.
     std::vector<int> column_number(E.NumMyCols(), -1);
     for (int c = 0; c < E.NumMyCols(); ++c)
       {
@@ -83,11 +88,23 @@ namespace fdparticle
         if (std::find(col_blocks.begin(), col_blocks.end(), b) != col_blocks.end())
           column_number[c] = static_cast<int>(j);
       }
+    if (multiplier_columns)
+      column_number = free_multiplier_numbers(column_number);
+    std::vector<int> rows;
+    if (multiplier_rows)
+      rows.assign(free_multipliers.begin(), free_multipliers.end());
+    else
+      for (unsigned int r = 0; r < owned[row_block].n_elements(); ++r)
+        rows.push_back(r);
+    const int first_row = multiplier_rows && !owned_free_multipliers.is_empty() ?
+                            owned_free_multipliers.nth_index_in_set(0) :
+                            0;
     std::vector<std::pair<int, double>> row;
     std::vector<int>                    cols;
     std::vector<double>                 vals;
-    for (unsigned int r = 0; r < owned[row_block].n_elements(); ++r)
+    for (unsigned int k = 0; k < rows.size(); ++k)
       {
+        const int r     = rows[k];
         const int local = local_offset[row_block] + r;
         int       n;
         double *  v;
@@ -109,16 +126,62 @@ namespace fdparticle
               cols.push_back(j);
               vals.push_back(value);
             }
-        result->InsertGlobalValues(static_cast<int>(blocks.locate(E.GRID(local)).second),
+        result->InsertGlobalValues(multiplier_rows ?
+                                     first_row + static_cast<int>(k) :
+                                     static_cast<int>(blocks.locate(E.GRID(local)).second),
                                    cols.size(), vals.data(), cols.data());
       }
     // Blocks that share a numbering share their owned set too (NewtonSystem::Blocks).
     Assert(std::all_of(col_blocks.begin(), col_blocks.end(),
                        [&](const unsigned int b) { return owned[b] == owned[col_blocks.front()]; }),
            ExcInternalError());
-    result->FillComplete(owned[col_blocks.front()].make_trilinos_map(
-                           system->A.get_mpi_communicator(), false),
+    result->FillComplete((multiplier_columns ? owned_free_multipliers : owned[col_blocks.front()])
+                           .make_trilinos_map(comm, false),
                          map);
+    return result;
+  }
+
+  void BlockPreconditioner::apply_multiplier_inverse() const
+  {
+    if (owned_free_multipliers.size() > 0)
+      multiplier_amg.vmult(l_out, l_in);
+  }
+
+  void BlockPreconditioner::scatter_multipliers(const TrilinosWrappers::MPI::Vector &l,
+                                                double *multipliers) const
+  {
+    const double *v = values(l);
+    for (unsigned int k = 0; k < free_multipliers.size(); ++k)
+      multipliers[free_multipliers[k]] = v[k];
+  }
+
+  std::vector<int>
+  BlockPreconditioner::free_multiplier_numbers(const std::vector<int> &block_numbers) const
+  {
+    const MPI_Comm   comm = system->A.get_mpi_communicator();
+    const Epetra_Map source = owned[multiplier_block].make_trilinos_map(comm, false);
+    Epetra_Vector number(source);
+    number.PutScalar(-1);
+    const double first =
+      owned_free_multipliers.is_empty() ? 0 : owned_free_multipliers.nth_index_in_set(0);
+    for (unsigned int k = 0; k < free_multipliers.size(); ++k)
+      number[free_multipliers[k]] = first + k;
+    std::vector<int> wanted;
+    for (const int j : block_numbers)
+      if (j >= 0)
+        wanted.push_back(j);
+    std::sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    const Epetra_Map    target(-1, static_cast<int>(wanted.size()), wanted.data(), 0,
+                            source.Comm());
+    Epetra_Vector       found(target);
+    const Epetra_Import import(target, source);
+    found.Import(number, import, Insert);
+    std::vector<int> result(block_numbers.size(), -1);
+    for (unsigned int i = 0; i < block_numbers.size(); ++i)
+      if (block_numbers[i] >= 0)
+        result[i] = static_cast<int>(
+          found[std::lower_bound(wanted.begin(), wanted.end(), block_numbers[i]) - wanted.begin()]);
     return result;
   }
 
@@ -148,8 +211,23 @@ namespace fdparticle
     pressure_part.reinit(all_owned, comm);
     u_in.reinit(owned[velocity_block], comm);
     u_out.reinit(owned[velocity_block], comm);
-    l_in.reinit(owned[multiplier_block], comm);
-    l_out.reinit(owned[multiplier_block], comm);
+    free_multipliers.clear();
+    {
+      const unsigned int o_l = local_offset[multiplier_block];
+      const unsigned int n_l = owned[multiplier_block].n_elements();
+      for (const unsigned int i : blocks.free_dofs)
+        if (i >= o_l && i < o_l + n_l)
+          free_multipliers.push_back(i - o_l);
+      const unsigned long long n_free = free_multipliers.size();
+      unsigned long long       first  = 0;
+      MPI_Exscan(&n_free, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+      if (rank == 0)
+        first = 0;
+      owned_free_multipliers = IndexSet(Utilities::MPI::sum(n_free, comm));
+      owned_free_multipliers.add_range(first, first + n_free);
+    }
+    l_in.reinit(owned_free_multipliers, comm);
+    l_out.reinit(owned_free_multipliers, comm);
     p_in.reinit(owned[pressure_block], comm);
     p_out.reinit(owned[pressure_block], comm);
     op->reinit_vector(inner_rhs);
@@ -208,8 +286,17 @@ namespace fdparticle
         velocity_amg.initialize(*velocity_matrix, amg);
       }
     amg.aggregation_threshold = multiplier_aggregation_threshold;
+    for (std::vector<bool> &mode : amg.constant_modes)
+      {
+        std::vector<bool> free_mode(free_multipliers.size());
+        for (unsigned int k = 0; k < free_multipliers.size(); ++k)
+          free_mode[k] = mode[free_multipliers[k]];
+        mode.swap(free_mode);
+      }
     multiplier_matrix = extract(multiplier_block, {multiplier_block, velocity_block});
-    multiplier_amg.initialize(*multiplier_matrix, amg);
+    // Without particles no multiplier is free, and S_λ has no rows.
+    if (owned_free_multipliers.size() > 0)
+      multiplier_amg.initialize(*multiplier_matrix, amg);
     coupling_matrix = extract(velocity_block, {multiplier_block});
     gradient_matrix = extract(velocity_block, {pressure_block});
   }
@@ -296,8 +383,8 @@ namespace fdparticle
   void BlockPreconditioner::initialize_particle_block()
   {
     // S_y = D − C S_λ⁻¹ B, block by particle: B's column of unknown j of particle k is
-    // non-zero only on k's cells, and S_λ⁻¹ (one V-cycle of A_λλ + M, whose rows outside
-    // the particles are diagonal) reaches little beyond them. So the columns of unknown j
+    // non-zero only on k's cells, and S_λ⁻¹ (one V-cycle of A_λλ + M on the free
+    // multipliers, those of the particles' cells) reaches little beyond them. So the columns of unknown j
     // of all particles go through one V-cycle together, and each particle reads its own
     // block off the result in its rows: particle_block_size V-cycles, however many
     // particles. What two particles close together do to each other through S_λ⁻¹ lands
@@ -307,8 +394,8 @@ namespace fdparticle
       return;
     const unsigned int size = system->blocks.particle_block_size;
     Assert(size > 0 && m % size == 0, ExcInternalError());
-    const unsigned int n_l = owned[multiplier_block].n_elements();
-    const unsigned int o_l = local_offset[multiplier_block];
+    [[maybe_unused]] const unsigned int n_l = owned[multiplier_block].n_elements();
+    const unsigned int                  o_l = local_offset[multiplier_block];
 
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(system->D.nonZeros() + m * size);
@@ -317,16 +404,18 @@ namespace fdparticle
         entries.emplace_back(e.row(), e.col(), e.value());
     for (unsigned int j = 0; j < size; ++j)
       {
-        l_in = 0;
+        full = 0;
         system->for_each_border_entry(system->B, [&](const int row, const unsigned int column,
                                                      const double value) {
           Assert(row >= int(o_l) && row < int(o_l + n_l), ExcInternalError());
           if (column % size == j)
-            values(l_in)[row - o_l] += value;
+            values(full)[row] += value;
         });
-        multiplier_amg.vmult(l_out, l_in);
+        for (unsigned int k = 0; k < free_multipliers.size(); ++k)
+          values(l_in)[k] = values(full)[o_l + free_multipliers[k]];
+        apply_multiplier_inverse();
         full = 0;
-        std::copy_n(values(l_out), n_l, values(full) + local_offset[multiplier_block]);
+        scatter_multipliers(l_out, values(full) + o_l);
         const Eigen::VectorXd product = system->border_product(full);
         for (unsigned int i = 0; i < m; ++i)
           entries.emplace_back(i, i - i % size + j, -product[i]);
@@ -344,14 +433,17 @@ namespace fdparticle
     const double *     r   = values(src.block(0));
     double *           out = values(dst.block(0));
     const unsigned int n_u = owned[velocity_block].n_elements();
-    const unsigned int n_l = owned[multiplier_block].n_elements();
     const unsigned int o_l = local_offset[multiplier_block];
 
-    // λ and y: z = S_λ⁻¹ r_λ, y = S_y⁻¹ (r_y − C z), λ = S_λ⁻¹ (r_λ − B y).
-    std::copy_n(r + o_l, n_l, values(l_in));
+    // λ and y: z = S_λ⁻¹ r_λ, y = S_y⁻¹ (r_y − C z), λ = S_λ⁻¹ (r_λ − B y), on the free
+    // multipliers (the others stay 0).
+    const unsigned int n_f = free_multipliers.size();
+    double *           li  = values(l_in);
+    for (unsigned int k = 0; k < n_f; ++k)
+      li[k] = r[o_l + free_multipliers[k]];
     {
       const ScopedSeconds t(times.multiplier_cycles);
-      multiplier_amg.vmult(l_out, l_in);
+      apply_multiplier_inverse();
     }
     const unsigned int m = op->n_particle_unknowns();
     Eigen::VectorXd    y = Eigen::VectorXd::Zero(m);
@@ -360,17 +452,16 @@ namespace fdparticle
         {
           const ScopedSeconds t(times.particle_block);
           full = 0;
-          std::copy_n(values(l_out), n_l, values(full) + o_l);
+          scatter_multipliers(l_out, values(full) + o_l);
           y    = particle_schur.solve(op->particle_part(src) - system->border_product(full));
           full = 0;
           system->add_border(y, full);
-          double *      li = values(l_in);
           const double *by = values(full) + o_l;
-          for (unsigned int i = 0; i < n_l; ++i)
-            li[i] -= by[i];
+          for (unsigned int k = 0; k < n_f; ++k)
+            li[k] -= by[free_multipliers[k]];
         }
         const ScopedSeconds t(times.multiplier_cycles);
-        multiplier_amg.vmult(l_out, l_in);
+        apply_multiplier_inverse();
       }
     op->set_particle_part(dst, y);
 
@@ -390,7 +481,7 @@ namespace fdparticle
 
     dst.block(0) = 0;
     std::copy_n(values(u_out), n_u, out);
-    std::copy_n(values(l_out), n_l, out + o_l);
+    scatter_multipliers(l_out, out + o_l);
   }
 
   void BlockPreconditioner::vmult_inner_operator(BlockVector &dst, const BlockVector &src) const

@@ -148,9 +148,20 @@ namespace fdparticle
     /// The rows of block row_block of A with the columns of the blocks col_blocks, all
     /// numbered from their block's start; entries of different column blocks at the same
     /// number are summed (used for A_λλ + A_λu, which share the numbering). The column
-    /// blocks must share their numbering (u and λ do).
+    /// blocks must share their numbering (u and λ do). In the multiplier numbering only
+    /// the free multipliers count, numbered as owned_free_multipliers: rows and columns
+    /// of the others are left out.
     std::unique_ptr<Epetra_CrsMatrix>
     extract(const unsigned int row_block, const std::vector<unsigned int> &col_blocks) const;
+    /// For block numbers of the multiplier (or velocity) numbering, of any rank, their
+    /// numbers in owned_free_multipliers' numbering, or −1 for a constrained multiplier.
+    /// Collective.
+    std::vector<int> free_multiplier_numbers(const std::vector<int> &block_numbers) const;
+    /// l_out = S_λ⁻¹ l_in by one V-cycle (nothing without free multipliers).
+    void apply_multiplier_inverse() const;
+    /// l (on the free multipliers) into multipliers (the multiplier block of an A-layout
+    /// vector), at the free multipliers' places; the others are left as they are.
+    void scatter_multipliers(const TrilinosWrappers::MPI::Vector &l, double *multipliers) const;
 
     /// The parts of initialize(), one per block, in the order they must run (the particle
     /// block uses the multiplier AMG):
@@ -175,6 +186,13 @@ namespace fdparticle
 
     /// Owned DoFs of each block, numbered from the block's start.
     std::vector<IndexSet> owned;
+    /// The multiplier block's unconstrained DoFs (NewtonSystem::Blocks::free_dofs), by
+    /// their local number in the block, and over all ranks numbered among themselves.
+    /// S_λ, its AMG and A_uλ's columns hold only these: the others are inactive
+    /// multipliers, rows of A with a diagonal only and zero in a correction (most of the
+    /// block; doc/scaling.md).
+    std::vector<unsigned int> free_multipliers;
+    IndexSet                  owned_free_multipliers;
     /// Where each block's owned entries start in the local array of an A-layout vector.
     std::vector<unsigned int> local_offset;
 
@@ -198,7 +216,8 @@ namespace fdparticle
     Eigen::SparseLU<Eigen::SparseMatrix<double>> particle_schur;
 
     mutable unsigned int n_inner_iterations = 0;
-    /// Work vectors: A layout, velocity block, multiplier block, Krylov layout.
+    /// Work vectors: A layout, velocity block, free multipliers, pressure block, Krylov
+    /// layout.
     mutable TrilinosWrappers::MPI::Vector full, pressure_part, u_in, u_out, l_in, l_out,
       p_in, p_out;
     mutable BlockVector                   inner_rhs;
