@@ -147,6 +147,14 @@ namespace fdparticle
       multiplier_amg.vmult(l_out, l_in);
   }
 
+  void BlockPreconditioner::gather_multipliers(const double *                 multipliers,
+                                               TrilinosWrappers::MPI::Vector &l) const
+  {
+    double *v = values(l);
+    for (unsigned int k = 0; k < free_multipliers.size(); ++k)
+      v[k] = multipliers[free_multipliers[k]];
+  }
+
   void BlockPreconditioner::scatter_multipliers(const TrilinosWrappers::MPI::Vector &l,
                                                 double *multipliers) const
   {
@@ -218,13 +226,8 @@ namespace fdparticle
       for (const unsigned int i : blocks.free_dofs)
         if (i >= o_l && i < o_l + n_l)
           free_multipliers.push_back(i - o_l);
-      const unsigned long long n_free = free_multipliers.size();
-      unsigned long long       first  = 0;
-      MPI_Exscan(&n_free, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
-      if (rank == 0)
-        first = 0;
-      owned_free_multipliers = IndexSet(Utilities::MPI::sum(n_free, comm));
-      owned_free_multipliers.add_range(first, first + n_free);
+      owned_free_multipliers =
+        Utilities::MPI::create_ascending_partitioning(comm, free_multipliers.size())[rank];
     }
     l_in.reinit(owned_free_multipliers, comm);
     l_out.reinit(owned_free_multipliers, comm);
@@ -384,10 +387,10 @@ namespace fdparticle
   {
     // S_y = D − C S_λ⁻¹ B, block by particle: B's column of unknown j of particle k is
     // non-zero only on k's cells, and S_λ⁻¹ (one V-cycle of A_λλ + M on the free
-    // multipliers, those of the particles' cells) reaches little beyond them. So the columns of unknown j
-    // of all particles go through one V-cycle together, and each particle reads its own
-    // block off the result in its rows: particle_block_size V-cycles, however many
-    // particles. What two particles close together do to each other through S_λ⁻¹ lands
+    // multipliers, those of the particles' cells) reaches little beyond them. So the
+    // columns of unknown j of all particles go through one V-cycle together, and each
+    // particle reads its own block off the result in its rows: particle_block_size
+    // V-cycles, however many particles. What two particles close together do to each other through S_λ⁻¹ lands
     // in their own blocks; D's contact blocks between particles are kept.
     const unsigned int m = op->n_particle_unknowns();
     if (m == 0)
@@ -411,8 +414,7 @@ namespace fdparticle
           if (column % size == j)
             values(full)[row] += value;
         });
-        for (unsigned int k = 0; k < free_multipliers.size(); ++k)
-          values(l_in)[k] = values(full)[o_l + free_multipliers[k]];
+        gather_multipliers(values(full) + o_l, l_in);
         apply_multiplier_inverse();
         full = 0;
         scatter_multipliers(l_out, values(full) + o_l);
@@ -437,10 +439,7 @@ namespace fdparticle
 
     // λ and y: z = S_λ⁻¹ r_λ, y = S_y⁻¹ (r_y − C z), λ = S_λ⁻¹ (r_λ − B y), on the free
     // multipliers (the others stay 0).
-    const unsigned int n_f = free_multipliers.size();
-    double *           li  = values(l_in);
-    for (unsigned int k = 0; k < n_f; ++k)
-      li[k] = r[o_l + free_multipliers[k]];
+    gather_multipliers(r + o_l, l_in);
     {
       const ScopedSeconds t(times.multiplier_cycles);
       apply_multiplier_inverse();
@@ -457,7 +456,8 @@ namespace fdparticle
           full = 0;
           system->add_border(y, full);
           const double *by = values(full) + o_l;
-          for (unsigned int k = 0; k < n_f; ++k)
+          double *      li = values(l_in);
+          for (unsigned int k = 0; k < free_multipliers.size(); ++k)
             li[k] -= by[free_multipliers[k]];
         }
         const ScopedSeconds t(times.multiplier_cycles);

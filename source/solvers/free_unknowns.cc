@@ -9,15 +9,10 @@ namespace fdparticle
     , free_dofs(system.blocks.free_dofs)
     , n_all(system.r_fe.size())
   {
-    const MPI_Comm comm = system.r_fe.get_mpi_communicator();
-    const unsigned long long n_local = free_dofs.size();
     // Each rank's free unknowns follow those of the ranks before it.
-    unsigned long long first = 0;
-    MPI_Exscan(&n_local, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      first = 0;
-    layout.set_size(Utilities::MPI::sum(n_local, comm));
-    layout.add_range(first, first + n_local);
+    const MPI_Comm comm = system.r_fe.get_mpi_communicator();
+    layout = Utilities::MPI::create_ascending_partitioning(
+      comm, free_dofs.size())[Utilities::MPI::this_mpi_process(comm)];
     op.reinit_vector(wide_src);
     op.reinit_vector(wide_dst);
   }

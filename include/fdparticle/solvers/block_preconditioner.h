@@ -159,6 +159,9 @@ namespace fdparticle
     std::vector<int> free_multiplier_numbers(const std::vector<int> &block_numbers) const;
     /// l_out = S_λ⁻¹ l_in by one V-cycle (nothing without free multipliers).
     void apply_multiplier_inverse() const;
+    /// The free multipliers' entries of multipliers (the multiplier block of an A-layout
+    /// vector) into l.
+    void gather_multipliers(const double *multipliers, TrilinosWrappers::MPI::Vector &l) const;
     /// l (on the free multipliers) into multipliers (the multiplier block of an A-layout
     /// vector), at the free multipliers' places; the others are left as they are.
     void scatter_multipliers(const TrilinosWrappers::MPI::Vector &l, double *multipliers) const;
