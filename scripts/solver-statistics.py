@@ -24,6 +24,7 @@ FIELDS = {
     "free_unknowns": r"Krylov vectors of the " + NUMBER + r" free",
     "patch_unknowns": r"cut-cell patch " + NUMBER + r" unknowns",
     "patch_mb": r"factored in " + NUMBER + r" MB",
+    "slow_pressure_modes": r"\((?:at least )?" + NUMBER + r" slow pressure modes\)",
     "setup_seconds": r"built in " + NUMBER + r" s",
     "patch_setup_seconds": r"built in [0-9.eE+-]+ s \(patch " + NUMBER + r" s\)",
     "iterate_seconds": r"iterations " + NUMBER + r" s \(",

@@ -1,5 +1,10 @@
+#include <deal.II/base/numbers.h>
+
 #include <fdparticle/base/box.h>
 #include <fdparticle/base/parameter_tools.h>
+
+#include <algorithm>
+#include <functional>
 
 namespace fdparticle
 {
@@ -156,6 +161,35 @@ namespace fdparticle
     for (unsigned int d = 0; d < dim; ++d)
       v *= upper[d] - lower[d];
     return v;
+  }
+
+  template <int dim>
+  unsigned int Box<dim>::count_modes_below(const double k, const unsigned int cap) const
+  {
+    // Mode numbers m_0, …, m_{dim−1} direction by direction, each from 0 up while the
+    // squared wavenumber so far stays below k²; a periodic m > 0 stands for ±m.
+    std::array<double, dim> step;
+    for (unsigned int d = 0; d < dim; ++d)
+      step[d] = (periodic[d] ? 2 : 1) * numbers::PI / (upper[d] - lower[d]);
+    unsigned int count = 0;
+    const std::function<void(unsigned int, double, unsigned int, bool)> visit =
+      [&](const unsigned int d, const double k2, const unsigned int multiplicity, const bool zero) {
+        if (d == dim)
+          {
+            if (!zero)
+              count = std::min(cap, count + multiplicity);
+            return;
+          }
+        for (unsigned int m = 0; count < cap; ++m)
+          {
+            const double k2_m = k2 + std::pow(m * step[d], 2);
+            if (!(k2_m < k * k))
+              break;
+            visit(d + 1, k2_m, multiplicity * (periodic[d] && m > 0 ? 2 : 1), zero && m == 0);
+          }
+      };
+    visit(0, 0, 1, true);
+    return count;
   }
 
   template class Box<2>;

@@ -238,7 +238,8 @@ namespace fdparticle
 
     initialize_velocity_and_multiplier();
     initialize_pressure_cells();
-    initialize_pressure_laplacian();
+    if (laplacian_needed())
+      initialize_pressure_laplacian();
     initialize_particle_block();
     // A patch that is too large or cannot be factored is dropped (on all ranks, which
     // factor it together): the preconditioner still works without it (the cheap form may
@@ -341,6 +342,16 @@ namespace fdparticle
           for (unsigned int j = 0; j < npc; ++j)
             pressure_inverse[(first + i) * npc + j] = Si(i, j);
       }
+  }
+
+  bool BlockPreconditioner::laplacian_needed() const
+  {
+    if (inertia != Inertia::automatic)
+      return inertia == Inertia::always;
+    const auto & b      = system->blocks;
+    const double k_star = std::sqrt(b.mass_coefficient / b.viscosity);
+    return b.slow_pressure_modes > max_slow_pressure_modes ||
+           k_star * b.base_cell_size > max_slow_mode_resolution;
   }
 
   void BlockPreconditioner::initialize_pressure_laplacian()
@@ -526,6 +537,7 @@ namespace fdparticle
 
     // − ρ_f c0 L⁻¹ r_p: Cahouet–Chabard's term, the inertia of the velocity that the
     // pressure has to move (S⁻¹ ≈ −(μ M_p⁻¹ + ρ_f c0 L⁻¹), doc/method.md §8).
+    if (pressure_laplacian)
     {
       std::copy_n(r + o_p, n_p, values(p_in));
       pressure_amg.vmult(p_out, p_in);

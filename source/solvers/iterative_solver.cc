@@ -63,6 +63,16 @@ namespace fdparticle
                         "matrix (its products are matrix-free), 1.1-1.9 times faster than amg "
                         "(doc/scaling.md). amg: one ML V-cycle on the assembled velocity "
                         "matrix.");
+      prm.declare_entry("Pressure Laplacian", "auto", Patterns::Selection("auto|true|false"),
+                        "Iterative solver: the inertial term -rho_f c0 L^-1 of the pressure "
+                        "Schur complement's inverse (Cahouet-Chabard; L = G M_u^-1 G^T, one "
+                        "AMG V-cycle; doc/method.md §8). It matters for the pressure modes of "
+                        "the box whose wavenumber is below sqrt(rho_f c0/mu), where inertia "
+                        "outweighs viscosity (small time steps, small viscosity). auto: left "
+                        "out when there are at most 10 such modes and each spans about 20 or "
+                        "more of the base mesh's cells (sqrt(rho_f c0/mu) h <= 0.3): GMRES "
+                        "then resolves them in about as many iterations, which costs less "
+                        "than L's set-up and V-cycles (doc/scaling.md).");
       prm.declare_entry("Iterative solver statistics", "false", Patterns::Bool(),
                         "Print, for every linear solve, the outer and inner iterations, the "
                         "residual reached, the cut-cell patch's size and memory, and rank 0's "
@@ -91,6 +101,10 @@ namespace fdparticle
     preconditioner.patch_memory_limit   = prm.get_double("Cut cell patch memory") * 1e9;
     verbose                        = prm.get_bool("Iterative solver statistics");
     velocity_multigrid             = prm.get("Velocity preconditioner") == "multigrid";
+    const std::string inertia      = prm.get("Pressure Laplacian");
+    preconditioner.inertia         = inertia == "true"  ? BlockPreconditioner::Inertia::always :
+                                     inertia == "false" ? BlockPreconditioner::Inertia::never :
+                                                          BlockPreconditioner::Inertia::automatic;
     prm.leave_subsection();
   }
 
@@ -252,7 +266,13 @@ namespace fdparticle
                 << free.n_full() << " unknowns; cut-cell patch " << preconditioner.patch_size()
                 << " unknowns, factored in " << preconditioner.patch_memory() / 1e6
                 << " MB (largest rank" << (preconditioner.patch_symmetric() ? ", symmetric" : "")
-                << "); "
+                << "); pressure Laplacian "
+                << (preconditioner.with_inertia() ? "built" : "left out") << " ("
+                << (system.blocks.slow_pressure_modes <
+                        NewtonSystem::Blocks::max_counted_pressure_modes ?
+                      std::to_string(system.blocks.slow_pressure_modes) :
+                      "at least " + std::to_string(system.blocks.slow_pressure_modes))
+                << " slow pressure modes); "
                 << (missed_after > 0 ? "reused preconditioner missed after " +
                                          std::to_string(missed_after) + " iterations, " :
                                        std::string())

@@ -172,6 +172,11 @@ end
                     "wall velocity of " + Domain<2>::face_name(f));
       }
     check(Domain<2>::face_name(0) == "x-" && Domain<2>::face_name(3) == "y+", "face names");
+    // Neumann modes of the 2 x 4 box: k = pi (m/2, n/4), i.e. pi/4 (0, 1), pi/2 (0, 2) and
+    // (1, 0), 1.76 (1, 1).
+    check(d.count_modes_below(0.7, 100) == 0, "no Laplace mode below 0.7 < pi/4");
+    check(d.count_modes_below(1.5, 100) == 1, "one Laplace mode below 1.5: pi/4");
+    check(d.count_modes_below(1.6, 100) == 3, "three Laplace modes below 1.6: pi/4, pi/2 twice");
 
     check_close(p.fluid.density, 1000.0, "fluid density 1000");
     check_close(p.fluid.viscosity, 0.01, "viscosity 0.01");
@@ -221,6 +226,13 @@ end
             "face " + Domain<3>::face_name(f) + (walls[f] ? " is a wall" : " is no wall"));
     check_close(d.wall_velocity(2), Tensor<1, 3>({0.5, 0, -0.25}), "wall velocity of y-");
     check_close(d.wall_velocity(3), Tensor<1, 3>(), "wall y+ at rest");
+    // Laplace modes of the box periodic in x (length 1) and z (3), walls in y (2):
+    // k = (2 pi l, pi m/2, 2 pi n/3), l and n of either sign: pi/2 (m = 1), 2.09 (n = +-1),
+    // 2.62 (m = 1, n = +-1), pi (m = 2), then 3.78 (m = 2, n = +-1).
+    check(d.count_modes_below(2.0, 100) == 1, "one Laplace mode below 2: pi/2");
+    check(d.count_modes_below(2.2, 100) == 3, "three Laplace modes below 2.2: a periodic pair");
+    check(d.count_modes_below(3.2, 100) == 6, "six Laplace modes below 3.2");
+    check(d.count_modes_below(1e3, 5) == 5, "Laplace modes counted up to the cap");
     check_close(p.fluid.gravity, Tensor<1, 3>({0, 0, -9.81}), "gravity (0, 0, -9.81)");
     check_close(p.fluid.viscosity, 0.03, "viscosity 3e-2");
     check_close(p.fluid.hydrostatic_gradient(), Tensor<1, 3>({1, 0, -19.62}),

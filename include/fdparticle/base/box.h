@@ -65,6 +65,11 @@ namespace fdparticle
     const Point<dim> & lower_corner() const { return lower; }
     const Point<dim> & upper_corner() const { return upper; }
     double             volume() const;
+    /// The non-constant eigenmodes of the Laplacian on the box (Neumann on the walls,
+    /// periodic across periodic faces) with a wavenumber below k, counted up to cap: the
+    /// modes exp(i k·x) or cos(k·x) with k_d = π m/L_d (walls, m ≥ 0) or 2π m/L_d
+    /// (periodic, m of either sign).
+    unsigned int       count_modes_below(const double k, const unsigned int cap) const;
     static std::string face_name(const types::boundary_id face);
 
   protected:

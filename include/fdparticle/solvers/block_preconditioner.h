@@ -37,7 +37,8 @@ namespace fdparticle
    * velocity is rigid, so the pressure there sees little besides its penalty; in the fluid
    * the Stokes Schur complement is close to −M_p/μ. The inertial one, −ρ_f c0 L⁻¹ with
    * L = G M_u⁻¹ Gᵀ (G = A_pu, M_u the diagonal of the velocity mass), one AMG V-cycle,
-   * matters when ρ_f c0 h²/μ is not small (small Δt; doc/scaling.md).
+   * matters for the pressure modes of wavenumber below √(ρ_f c0/μ) (small Δt, small μ;
+   * doc/scaling.md); with only a few such modes it is left out (`inertia`).
    *
    * p and λ are jointly undetermined inside a particle (only the penalties fix them), and
    * an approximation of the λ block alone spoils that balance: the inner solve of the
@@ -76,6 +77,17 @@ namespace fdparticle
     /// A rank's patch whose factorization would need more bytes than this is dropped
     /// (0: no limit).
     double patch_memory_limit = 0;
+    /// Whether S_p⁻¹ has its inertial term −ρ_f c0 L⁻¹: always, never, or (automatic)
+    /// unless the pressure modes on which inertia outweighs viscosity (wavenumber below
+    /// k* = √(ρ_f c0/μ), NewtonSystem::Blocks::slow_pressure_modes) are few and smooth
+    /// on the mesh (`laplacian_needed`).
+    enum class Inertia
+    {
+      automatic,
+      always,
+      never
+    };
+    Inertia inertia = Inertia::automatic;
 
     /// Build from the system's current values. The system and the operator must outlive
     /// the preconditioner's use; A keeps being read (for the current values).
@@ -98,6 +110,8 @@ namespace fdparticle
     double patch_memory() const { return patch.memory(); }
     /// Whether the patch was symmetric and factored as such.
     bool patch_symmetric() const { return patch.symmetric(); }
+    /// Whether S_p⁻¹ has its inertial term (L and its AMG were built).
+    bool with_inertia() const { return pressure_laplacian != nullptr; }
     /// Wall time of the last initialize() and of the patch's part of it (rank 0's, s).
     double setup_time() const { return setup_seconds; }
     double patch_setup_time() const { return patch_seconds; }
@@ -209,6 +223,15 @@ namespace fdparticle
     /// L = G M_u⁻¹ Gᵀ (Cahouet–Chabard) and one AMG V-cycle for it.
     std::unique_ptr<Epetra_CrsMatrix> pressure_laplacian;
     TrilinosWrappers::PreconditionAMG pressure_amg;
+    /// Whether `automatic` builds L: unless there are at most max_slow_pressure_modes
+    /// slow modes and k* h ≤ max_slow_mode_resolution on the base mesh's cells (the
+    /// shortest slow wave spans at least 2π/0.3 ≈ 20 of them). Then GMRES resolves the
+    /// slow modes in about one iteration each, which costs less than L's set-up and
+    /// V-cycles; on coarser cells, or with more modes, the count grows by a quarter or more
+    /// (doc/scaling.md).
+    bool laplacian_needed() const;
+    static constexpr unsigned int max_slow_pressure_modes  = 10;
+    static constexpr double       max_slow_mode_resolution = 0.3;
     /// Relative diagonal shift of L: its kernel (the pressure level) would make the
     /// coarsest AMG level singular; 1e-6 changes no other mode noticeably.
     static constexpr double laplacian_shift = 1e-6;

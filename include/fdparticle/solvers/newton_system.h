@@ -151,6 +151,13 @@ namespace fdparticle
       unsigned int particle_block_size = 0;
       /// ρ_f c0 and μ of the step: the scales of the pressure Schur complement.
       double mass_coefficient = 0, viscosity = 0;
+      /// The box's pressure modes on which the fluid's inertia outweighs its viscosity:
+      /// the Laplace modes of wavenumber below √(ρ_f c0/μ) (Box::count_modes_below),
+      /// counted up to max_counted_pressure_modes (doc/method.md §8).
+      unsigned int slow_pressure_modes = 0;
+      static constexpr unsigned int max_counted_pressure_modes = 100;
+      /// The edge of the base mesh's cells (Domain::base_cell_size), the mesh's largest.
+      double base_cell_size = 0;
       /// The velocity block's inverse by the program's geometric multigrid, or nullptr:
       /// the preconditioner builds an AMG V-cycle on A_uu itself.
       std::shared_ptr<VelocityBlockInverse> velocity_inverse;
