@@ -8,13 +8,13 @@
 # doc/pressure_laplacian.csv: one row per case and variant with the slow modes, the outer
 # and inner iterations, the preconditioner's set-up and iterating time, the step's wall
 # time, the peak memory, the date and the commit.
-# Usage: bash benchmarks/pressure_laplacian.sh   (~4 min on 2 cores; alone on the machine)
+# Usage: bash benchmarks/pressure_laplacian.sh   (~5 min on 2 cores; alone on the machine)
 #        CASES="21:0.1" bash benchmarks/pressure_laplacian.sh   (n:dt pairs)
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/pressure_laplacian}"
-cases="${CASES:-6:0.1 8:0.1 12:0.1 12:0.05 12:0.01 12:0.001 21:0.1}"
+cases="${CASES:-6:1 6:0.1 8:0.1 12:1 12:0.1 12:0.05 12:0.01 12:0.001 21:0.1}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
 . "$top/benchmarks/scaling_scenes.sh"
