@@ -143,6 +143,9 @@ namespace fdparticle
     AffineConstraints<double> static_constraints;  ///< hanging nodes + periodicity
     AffineConstraints<double> update_constraints;  ///< homogeneous: Newton corrections
     AffineConstraints<double> state_constraints;   ///< wall velocities: the solution itself
+    /// The DoFs that update_constraints fixed when A's pattern was built (empty after new
+    /// DoFs): setup_matrix keeps the pattern while they stay the same.
+    IndexSet                  pattern_constrained;
     types::global_dof_index   pressure_reference_dof = 0;
     Point<dim>                pressure_reference_point;
 

@@ -49,6 +49,7 @@ namespace fdparticle
   {
     TimerOutput::Scope t(*timer, "setup");
     dof_handler.distribute_dofs(fe);
+    pattern_constrained = IndexSet();
     // Chosen once, on the first mesh: 'auto' by its actual unknowns (an estimate from the
     // refinement band before the mesh exists overcounts).
     if (!linear_solver)
@@ -249,14 +250,30 @@ namespace fdparticle
                              DoFTools::always :
                              DoFTools::none;
         }
-    TrilinosWrappers::SparsityPattern sparsity(owned_dofs, owned_dofs, relevant_dofs, comm);
-    DoFTools::make_sparsity_pattern(dof_handler, coupling, sparsity, update_constraints, false,
-                                    Utilities::MPI::this_mpi_process(comm));
-    sparsity.compress();
+    // The pattern follows from the DoFs and from which of them the constraints fix (each
+    // line is one of the mesh's hanging-node or periodicity lines, or a zero line): while
+    // both stay, A keeps its pattern and none is built.
+    IndexSet constrained(dof_handler.n_dofs());
+    for (const auto i : relevant_dofs)
+      if (update_constraints.is_constrained(i))
+        constrained.add_index(i);
+    constrained.compress();
+    const bool same_constraints =
+      pattern_constrained.size() == constrained.size() && pattern_constrained == constrained;
+    const bool keep = Utilities::MPI::min(same_constraints ? 1 : 0, comm) == 1;
+    TrilinosWrappers::SparsityPattern sparsity;
+    if (!keep)
+      {
+        sparsity.reinit(owned_dofs, owned_dofs, relevant_dofs, comm);
+        DoFTools::make_sparsity_pattern(dof_handler, coupling, sparsity, update_constraints,
+                                        false, Utilities::MPI::this_mpi_process(comm));
+        sparsity.compress();
+      }
+    pattern_constrained = std::move(constrained);
     // A pattern equal to the one A has keeps A and whatever the linear solver built on it
     // (a direct solver's symbolic factorization): steps in which no DoF changes its
     // constraint status pay only for the new values.
-    const bool new_pattern = !system.has_pattern(sparsity);
+    const bool new_pattern = !keep && !system.has_pattern(sparsity);
     if (new_pattern)
       linear_solver->pattern_changed();
     system.reinit(owned_dofs, relevant_dofs, sparsity, new_pattern,
