@@ -96,9 +96,7 @@ namespace fdparticle
     else
       for (unsigned int r = 0; r < owned[row_block].n_elements(); ++r)
         rows.push_back(r);
-    const int first_row = multiplier_rows && !owned_free_multipliers.is_empty() ?
-                            owned_free_multipliers.nth_index_in_set(0) :
-                            0;
+    const int first_row = multiplier_rows ? first_free_multiplier() : 0;
     std::vector<std::pair<int, double>> row;
     std::vector<int>                    cols;
     std::vector<double>                 vals;
@@ -141,6 +139,13 @@ namespace fdparticle
     return result;
   }
 
+  int BlockPreconditioner::first_free_multiplier() const
+  {
+    return owned_free_multipliers.is_empty() ?
+             0 :
+             static_cast<int>(owned_free_multipliers.nth_index_in_set(0));
+  }
+
   void BlockPreconditioner::apply_multiplier_inverse() const
   {
     if (owned_free_multipliers.size() > 0)
@@ -170,8 +175,7 @@ namespace fdparticle
     const Epetra_Map source = owned[multiplier_block].make_trilinos_map(comm, false);
     Epetra_Vector number(source);
     number.PutScalar(-1);
-    const double first =
-      owned_free_multipliers.is_empty() ? 0 : owned_free_multipliers.nth_index_in_set(0);
+    const double first = first_free_multiplier();
     for (unsigned int k = 0; k < free_multipliers.size(); ++k)
       number[free_multipliers[k]] = first + k;
     std::vector<int> wanted;
@@ -348,10 +352,9 @@ namespace fdparticle
   {
     if (inertia != Inertia::automatic)
       return inertia == Inertia::always;
-    const auto & b      = system->blocks;
-    const double k_star = std::sqrt(b.mass_coefficient / b.viscosity);
+    const auto &b = system->blocks;
     return b.slow_pressure_modes > max_slow_pressure_modes ||
-           k_star * b.base_cell_size > max_slow_mode_resolution;
+           b.inertial_wavenumber() * b.base_cell_size > max_slow_mode_resolution;
   }
 
   void BlockPreconditioner::initialize_pressure_laplacian()

@@ -171,6 +171,9 @@ namespace fdparticle
     /// numbers in owned_free_multipliers' numbering, or −1 for a constrained multiplier.
     /// Collective.
     std::vector<int> free_multiplier_numbers(const std::vector<int> &block_numbers) const;
+    /// The number of this rank's first free multiplier in owned_free_multipliers'
+    /// numbering (0 if it has none).
+    int first_free_multiplier() const;
     /// l_out = S_λ⁻¹ l_in by one V-cycle (nothing without free multipliers).
     void apply_multiplier_inverse() const;
     /// The free multipliers' entries of multipliers (the multiplier block of an A-layout

@@ -14,6 +14,7 @@
 #include <Epetra_CrsMatrix.h>
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -151,9 +152,11 @@ namespace fdparticle
       unsigned int particle_block_size = 0;
       /// ρ_f c0 and μ of the step: the scales of the pressure Schur complement.
       double mass_coefficient = 0, viscosity = 0;
-      /// The box's pressure modes on which the fluid's inertia outweighs its viscosity:
-      /// the Laplace modes of wavenumber below √(ρ_f c0/μ) (Box::count_modes_below),
-      /// counted up to max_counted_pressure_modes (doc/method.md §8).
+      /// k* = √(ρ_f c0/μ): below this wavenumber the fluid's inertia outweighs its
+      /// viscosity on a pressure mode (doc/method.md §8).
+      double inertial_wavenumber() const { return std::sqrt(mass_coefficient / viscosity); }
+      /// The box's pressure modes below inertial_wavenumber() (Box::count_modes_below),
+      /// counted up to max_counted_pressure_modes.
       unsigned int slow_pressure_modes = 0;
       static constexpr unsigned int max_counted_pressure_modes = 100;
       /// The edge of the base mesh's cells (Domain::base_cell_size), the mesh's largest.

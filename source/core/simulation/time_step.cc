@@ -85,7 +85,7 @@ namespace fdparticle
     system.blocks.mass_coefficient = fluid.density * c[0];
     system.blocks.viscosity        = fluid.viscosity;
     system.blocks.slow_pressure_modes =
-      domain.count_modes_below(std::sqrt(system.blocks.mass_coefficient / fluid.viscosity),
+      domain.count_modes_below(system.blocks.inertial_wavenumber(),
                                NewtonSystem::Blocks::max_counted_pressure_modes);
     system.blocks.base_cell_size = domain.base_cell_size();
     // BDF history of the fluid: c1 u^n + c2 u^{n−1}.
