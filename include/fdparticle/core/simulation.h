@@ -16,6 +16,7 @@
 #include <fdparticle/fem/domain.h>
 #include <fdparticle/base/fluid.h>
 #include <fdparticle/fem/navier_stokes_assembler.h>
+#include <fdparticle/fem/pressure_agglomeration.h>
 #include <fdparticle/io/output_writer.h>
 #include <fdparticle/fem/particle_refinement.h>
 #include <fdparticle/particles/particle_set.h>
@@ -134,6 +135,7 @@ namespace fdparticle
     FESystem<dim>                             fe;
     DoFHandler<dim>                           dof_handler;
     NavierStokesAssembler<dim>                assembler;
+    PressureAgglomeration<dim>                pressure_agglomeration;
     /// The velocity block without a matrix, and its multigrid, if the linear solver asks
     /// for them.
     std::shared_ptr<VelocityBlock<dim>>       velocity_block;
@@ -146,6 +148,9 @@ namespace fdparticle
     /// The DoFs that update_constraints fixed when A's pattern was built (empty after new
     /// DoFs): setup_matrix keeps the pattern while they stay the same.
     IndexSet                  pattern_constrained;
+    /// The pressure agglomeration's ties when A's pattern was built, flattened (cell DoF,
+    /// neighbour DoF), and those of this step's constraints.
+    std::vector<types::global_dof_index> pattern_links, current_links;
     types::global_dof_index   pressure_reference_dof = 0;
     Point<dim>                pressure_reference_point;
 

@@ -44,6 +44,7 @@ namespace fdparticle
     TimeStepper::declare_parameters(prm);
     CutCellQuadrature<3>::declare_parameters(prm);
     NavierStokesAssembler<3>::declare_parameters(prm);
+    PressureAgglomeration<3>::declare_parameters(prm);
     declare_linear_solver_parameters(prm);
     NewtonSolver::declare_parameters(prm);
     OutputWriter<3>::declare_parameters(prm);
@@ -64,6 +65,7 @@ namespace fdparticle
     , fe(Introspection<dim>::finite_element())
     , dof_handler(triangulation)
     , assembler(fe, fluid, particles, quadrature)
+    , pressure_agglomeration(fe, assembler.get_mapping(), particles, quadrature)
   {
     domain.parse_parameters(prm);
     fluid.parse_parameters(prm);
@@ -79,6 +81,7 @@ namespace fdparticle
           return quadrature.partition_weight(cell, particles);
         });
     assembler.parse_parameters(prm);
+    pressure_agglomeration.parse_parameters(prm);
     newton.parse_parameters(prm);
     output.parse_parameters(prm);
     refinement.parse_parameters(prm);

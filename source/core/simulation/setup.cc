@@ -195,6 +195,13 @@ namespace fdparticle
     TimerOutput::Scope t(*timer, "constraints");
     const ComponentMask u_mask = fe.component_mask(Introspection<dim>::velocities());
     const auto support = assembler.particle_support(dof_handler, relevant_dofs, static_constraints);
+    const auto links = pressure_agglomeration.links(dof_handler);
+    current_links.clear();
+    for (const auto &link : links)
+      {
+        current_links.push_back(link.cell_dofs[0]);
+        current_links.insert(current_links.end(), link.masters.begin(), link.masters.end());
+      }
 
     for (const bool homogeneous : {true, false})
       {
@@ -215,6 +222,7 @@ namespace fdparticle
         if (!support.pressure_level_fixed && relevant_dofs.is_element(pressure_reference_dof) &&
             !c.is_constrained(pressure_reference_dof))
           c.add_line(pressure_reference_dof);
+        PressureAgglomeration<dim>::add_to(links, c);
         c.close();
       }
     return support;
@@ -258,8 +266,9 @@ namespace fdparticle
       if (update_constraints.is_constrained(i))
         constrained.add_index(i);
     constrained.compress();
-    const bool same_constraints =
-      pattern_constrained.size() == constrained.size() && pattern_constrained == constrained;
+    const bool same_constraints = pattern_constrained.size() == constrained.size() &&
+                                  pattern_constrained == constrained &&
+                                  pattern_links == current_links;
     const bool keep = Utilities::MPI::min(same_constraints ? 1 : 0, comm) == 1;
     TrilinosWrappers::SparsityPattern sparsity;
     if (!keep)
@@ -270,6 +279,7 @@ namespace fdparticle
         sparsity.compress();
       }
     pattern_constrained = std::move(constrained);
+    pattern_links       = current_links;
     // A pattern equal to the one A has keeps A and whatever the linear solver built on it
     // (a direct solver's symbolic factorization): steps in which no DoF changes its
     // constraint status pay only for the new values.
