@@ -8,8 +8,9 @@
 # agglomeration = 0.25; the patch then grown from the inside cells alone). Writes
 # doc/outer_count.csv: one row per variant with the outer and inner iterations, the
 # patch's unknowns, the residual reached and the step's wall time, the date and the commit.
-# Usage: [SIZES="8 12 16"] [VARIANTS="cheap exact ..."] bash benchmarks/outer_count.sh
-#        (~8 min on 2 cores at the default SIZES=12, 40 min at "8 12 16")
+# Usage: [SIZES="8 12 16"] [VARIANTS="cheap exact ..."] [APPEND=1] bash benchmarks/outer_count.sh
+#        (~8 min on 2 cores at the default SIZES=12, 40 min at "8 12 16"); APPEND=1 adds
+#        rows to the CSV instead of starting it anew; a variant named twice runs twice.
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
@@ -22,7 +23,8 @@ mkdir -p "$work"
 csv="$top/doc/outer_count.csv"
 date=$(date -u +%Y-%m-%d); commit=$(git -C "$top" rev-parse --short HEAD)
 
-echo "n,variant,dofs,linear_iterations,inner_iterations,patch_unknowns,relative_residual,step_seconds,date,commit" > "$csv"
+[ "${APPEND:-0}" = 1 ] ||
+  echo "n,variant,dofs,linear_iterations,inner_iterations,patch_unknowns,relative_residual,step_seconds,date,commit" > "$csv"
 for n in $sizes; do
   for variant in $variants; do
     d="$work/$variant-$n"

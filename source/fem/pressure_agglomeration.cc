@@ -115,7 +115,11 @@ namespace fdparticle
         // mirror images of a cell take mirror images of its neighbours.
         std::vector<typename DoFHandler<dim>::active_cell_iterator> neighbours;
         std::vector<double>                                         weights;
-        auto consider = [&](const typename DoFHandler<dim>::active_cell_iterator &n) {
+        // The shift of the cell onto the side of a neighbour across a periodic face (zero
+        // across an inner face): the neighbour's polynomial is continued to the image.
+        std::vector<Tensor<1, dim>> shifts;
+        auto consider = [&](const typename DoFHandler<dim>::active_cell_iterator &n,
+                            const unsigned int                                    face) {
           if (n->is_artificial())
             return;
           const double fn = fraction_of(n);
@@ -123,6 +127,12 @@ namespace fdparticle
             {
               neighbours.push_back(n);
               weights.push_back(fn * n->measure());
+              const unsigned int d = face / 2;
+              const double       side_n =
+                (face % 2 == 0 ? n->vertex(GeometryInfo<dim>::vertices_per_cell - 1) : n->vertex(0))[d];
+              Tensor<1, dim> shift;
+              shift[d] = side_n - cell->face(face)->center()[d];
+              shifts.push_back(shift);
             }
         };
         for (const unsigned int face : cell->face_indices())
@@ -134,9 +144,10 @@ namespace fdparticle
             if (neighbour->has_children())
               for (unsigned int s = 0; s < cell->face(face)->n_children(); ++s)
                 consider(periodic ? cell->periodic_neighbor_child_on_subface(face, s) :
-                                    cell->neighbor_child_on_subface(face, s));
+                                    cell->neighbor_child_on_subface(face, s),
+                         face);
             else
-              consider(neighbour);
+              consider(neighbour, face);
           }
         if (neighbours.empty())
           continue;
@@ -161,8 +172,9 @@ namespace fdparticle
             FullMatrix<double> phi_n(points.size(), np), rhs(np, np), T(np, np);
             for (unsigned int q = 0; q < points.size(); ++q)
               {
-                const Point<dim> x = to_unit(neighbours[j],
-                                             mapping.transform_unit_to_real_cell(cell, points.point(q)));
+                const Point<dim> x =
+                  to_unit(neighbours[j],
+                          mapping.transform_unit_to_real_cell(cell, points.point(q)) + shifts[j]);
                 for (unsigned int a = 0; a < np; ++a)
                   phi_n(q, a) = fe.shape_value(p_local[a], x);
               }
