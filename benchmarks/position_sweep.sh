@@ -8,7 +8,8 @@
 # (a cell starting or stopping to be cut, a cut cell becoming inside or the reverse).
 # Variants: the multiplier defaults before commit 42ce90f (no ramp, Strain penalty 0.05,
 # interior pressure penalty delta = 1), the ramp as introduced in commit 13a8c20 (ramp 0.2,
-# s_e 0.15, delta = 1) and the current defaults (ramp 0.2, s_e 0.15, delta = 1e-3).
+# s_e 0.15, delta = 1) and the current defaults (ramp 0.2, s_e 0.15, delta = 1e-3), and
+# the defaults with pressure agglomeration (Quadrature/Pressure agglomeration = 0.25).
 # Writes doc/position_sweep.csv (s, F_y per variant), doc/position_sweep.png and prints the
 # RMS of the second difference of F_y over s (0 for a smooth curve sampled finely).
 # Usage: bash benchmarks/position_sweep.sh        (~6 min on 2 cores; finished runs in
@@ -25,6 +26,7 @@ settings() {
     session5) printf 'subsection Multiplier\n  set Penalty ramp = 0\n  set Strain penalty = 0.05\n  set Interior pressure penalty = 1\nend\n' ;;
     ramp5) printf 'subsection Multiplier\n  set Interior pressure penalty = 1\nend\n' ;;
     default) ;;
+    agglomerated) printf 'subsection Quadrature\n  set Pressure agglomeration = 0.25\nend\n' ;;
   esac
 }
 
@@ -69,7 +71,7 @@ EOF
 export -f one settings
 export exe work
 
-variants="session5 ramp5 default"
+variants="session5 ramp5 default agglomerated"
 for v in $variants; do
   seq 0 100 | xargs -P 2 -I{} bash -c "one $v {}"
 done
@@ -99,5 +101,6 @@ gnuplot -e "set terminal pngcairo size 900,500 noenhanced; set output '$top/doc/
   set datafile separator ','; set key autotitle columnhead; set grid;
   set xlabel 'disk centre moved down by s cells'; set ylabel 'F_y after one step';
   set title 'Force on a disk against its position on a 32 x 64 mesh (benchmarks/position_sweep.sh)';
-  plot '$csv' using 1:2 with linespoints, '' using 1:3 with linespoints, '' using 1:4 with linespoints" &&
+  plot '$csv' using 1:2 with linespoints, '' using 1:3 with linespoints, '' using 1:4 with linespoints,
+       '' using 1:5 with linespoints" &&
   echo "wrote $csv and doc/position_sweep.png"

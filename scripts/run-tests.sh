@@ -14,7 +14,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # read and refused), Stokes and Navier-Stokes, recovery (and its checkpoint), periodic
 # directions and adaptive refinement on 2 ranks. restart_2d and the mirror tests take over
 # ten minutes each there.
-debug_units='assembly_terms collisions direct_solver newton_solver cut_cell_quadrature parameters particle_refinement rigid_body time_stepper velocity_operator'
+debug_units='assembly_terms collisions direct_solver newton_solver cut_cell_quadrature parameters particle_refinement pressure_agglomeration rigid_body time_stepper velocity_operator'
 debug_tests="^unit/(${debug_units// /|})\$"
 debug_tests+='|^bad_|^(regression_sediment_2d|regression_cavity_2d|recovery_2d|recovery_exhausted_2d'
 debug_tests+='|stability_tiny_dt_2d|validation_array_2d|hydrostatic_2d_zero|mpi_adaptive_2d)$'

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <numeric>
-#include <limits>
 
 namespace fdparticle
 {

@@ -148,8 +148,8 @@ namespace fdparticle
     /// The DoFs that update_constraints fixed when A's pattern was built (empty after new
     /// DoFs): setup_matrix keeps the pattern while they stay the same.
     IndexSet                  pattern_constrained;
-    /// The pressure agglomeration's ties when A's pattern was built, flattened (cell DoF,
-    /// neighbour DoF), and those of this step's constraints.
+    /// The pressure agglomeration's ties when A's pattern was built, flattened (each
+    /// cell's first pressure DoF, then its masters), and those of this step's constraints.
     std::vector<types::global_dof_index> pattern_links, current_links;
     types::global_dof_index   pressure_reference_dof = 0;
     Point<dim>                pressure_reference_point;

@@ -6,6 +6,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 
 #include <fdparticle/fem/cut_cell_quadrature.h>
 #include <fdparticle/particles/particle_set.h>
