@@ -89,6 +89,14 @@ namespace fdparticle
     const unsigned int                   np = p_local.size();
     const QGauss<dim>                    points(2);
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    // Φ_K, the pressure shape functions at the Gauss points of the unit cell, and
+    // (Φ_Kᵀ Φ_K)⁻¹: the same for every cell.
+    FullMatrix<double> phi_k(points.size(), np), gram(np, np);
+    for (unsigned int q = 0; q < points.size(); ++q)
+      for (unsigned int a = 0; a < np; ++a)
+        phi_k(q, a) = fe.shape_value(p_local[a], points.point(q));
+    phi_k.Tmmult(gram, phi_k);
+    gram.gauss_jordan();
     // Cells are axis-aligned boxes (doc/method.md §1): unit coordinates by their corners,
     // also for a point outside the cell.
     auto to_unit = [](const auto &cell, const Point<dim> &x) {
@@ -152,15 +160,8 @@ namespace fdparticle
           continue;
         const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
 
-        // T_j = (Φ_Kᵀ Φ_K)⁻¹ Φ_Kᵀ Φ_j, Φ the pressure shape functions of the cell and of
-        // neighbour j at the cell's Gauss points: neighbour j's linear polynomial continued
-        // into the cell, reproduced exactly.
-        FullMatrix<double> phi_k(points.size(), np), gram(np, np);
-        for (unsigned int q = 0; q < points.size(); ++q)
-          for (unsigned int a = 0; a < np; ++a)
-            phi_k(q, a) = fe.shape_value(p_local[a], points.point(q));
-        phi_k.Tmmult(gram, phi_k);
-        gram.gauss_jordan();
+        // T_j = (Φ_Kᵀ Φ_K)⁻¹ Φ_Kᵀ Φ_j: neighbour j's linear polynomial continued into the
+        // cell, reproduced exactly.
         Link link;
         link.T.reinit(np, np * neighbours.size());
         cell->get_dof_indices(dofs);
