@@ -252,7 +252,8 @@ namespace fdparticle
     const Timer       patch_timer;
     const std::string failure =
       patch_layers >= 0 ?
-        patch.initialize(*system, patch_layers, patch_fluid_fraction, patch_memory_limit) :
+        patch.initialize(*system, patch_layers, patch_fluid_fraction, patch_memory_limit,
+                         symmetrize_patch) :
         "";
     if (!failure.empty())
       {

@@ -47,7 +47,8 @@ namespace fdparticle
     component.clear();
     negated.clear();
     group.clear();
-    is_symmetric = false;
+    is_symmetric            = false;
+    factored_symmetric_part = false;
     rank_rows.clear();
     rank_offsets.clear();
     patch_rhs.clear();
@@ -56,7 +57,8 @@ namespace fdparticle
   }
 
   std::string CutCellPatch::initialize(const NewtonSystem &system, const unsigned int layers,
-                                       const double max_fluid_fraction, const double memory_limit)
+                                       const double max_fluid_fraction, const double memory_limit,
+                                       const bool symmetric_part)
   {
     clear();
     const MPI_Comm                comm = system.r_fe.get_mpi_communicator();
@@ -67,7 +69,7 @@ namespace fdparticle
     if (dealii::Utilities::MPI::sum<unsigned long long>(dofs.size(), comm) == 0)
       return "";
     assemble(system, row_cells);
-    return factor(memory_limit, comm);
+    return factor(memory_limit, symmetric_part, comm);
   }
 
   std::vector<int> CutCellPatch::grow(const NewtonSystem &system, const unsigned int layers,
@@ -357,7 +359,8 @@ namespace fdparticle
     AssertThrow(matrix->FillComplete() == 0, ExcInternalError());
   }
 
-  std::string CutCellPatch::factor(const double memory_limit, const MPI_Comm comm)
+  std::string CutCellPatch::factor(const double memory_limit, const bool symmetric_part,
+                                   const MPI_Comm comm)
   {
     // MUMPS reads the ordering during its analysis only.
     std::vector<int>         ordering = mumps::nested_dissection(*matrix, comm, group);
@@ -367,9 +370,12 @@ namespace fdparticle
       clear();
       return reason;
     };
-    is_symmetric = test_symmetry();
-    // This rank's entries of the patch matrix (of a symmetric one its lower triangle),
-    // numbered over all ranks.
+    is_symmetric            = test_symmetry();
+    factored_symmetric_part = !is_symmetric && symmetric_part;
+    // This rank's entries of the patch matrix (of a symmetric one its lower triangle; for
+    // the symmetric part of another, half of each off-diagonal entry at its place in the
+    // lower triangle, where MUMPS sums the halves of a_ij and a_ji), numbered over all
+    // ranks.
     std::vector<int>    entry_rows, entry_columns;
     std::vector<double> entry_values;
     entry_rows.reserve(matrix->NumMyNonzeros());
@@ -379,7 +385,13 @@ namespace fdparticle
       {
         const int row = matrix->GRID(r);
         for_each_entry(*matrix, r, [&](const long long g, const double v) {
-          if (!is_symmetric || g <= row)
+          if (factored_symmetric_part)
+            {
+              entry_rows.push_back(std::max<int>(row, g));
+              entry_columns.push_back(std::min<int>(row, g));
+              entry_values.push_back(g == row ? v : 0.5 * v);
+            }
+          else if (!is_symmetric || g <= row)
             {
               entry_rows.push_back(row);
               entry_columns.push_back(static_cast<int>(g));
@@ -390,7 +402,8 @@ namespace fdparticle
     const int my_rows = matrix->NumMyRows();
     matrix.reset();
 
-    factorization = std::make_unique<mumps::Factorization>(comm, n, is_symmetric,
+    factorization = std::make_unique<mumps::Factorization>(comm, n,
+                                                           is_symmetric || factored_symmetric_part,
                                                            std::move(entry_rows),
                                                            std::move(entry_columns),
                                                            std::move(entry_values));

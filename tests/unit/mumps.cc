@@ -6,8 +6,10 @@
 //    right after the velocity row it is grouped with.
 //  - mumps::Factorization solves A x = b to round-off against a solution chosen first: LU
 //    of all entries, LDLᵀ of the lower triangle of the symmetric matrix, LU of a
-//    non-symmetric one (a convection-like velocity block), with and without the ordering,
-//    to 1e-10 (round-off leaves about 1e-12).
+//    non-symmetric one (a convection-like velocity block), and LDLᵀ of that one's
+//    symmetric part given as the cut-cell patch gives it (half of each off-diagonal entry
+//    at its place in the lower triangle, a_ij and a_ji both there: MUMPS must sum them),
+//    with and without the ordering, to 1e-10 (round-off leaves about 1e-12).
 // test-ranks: 1 2
 
 #include <deal.II/base/mpi.h>
@@ -19,6 +21,7 @@
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_MpiComm.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -83,10 +86,20 @@ namespace
     return E;
   }
 
-  /// Solve A x = A x_exact through mumps::Factorization from this rank's rows (their lower
-  /// triangle where `symmetric`); the largest error on rank 0.
+  /// How a matrix is handed to MUMPS: all entries (LU), the lower triangle (LDLᵀ), or
+  /// halves of all off-diagonal entries at their lower-triangle places (LDLᵀ of the
+  /// symmetric part).
+  enum class Entries
+  {
+    all,
+    lower,
+    halves
+  };
+
+  /// Solve S x = S x_exact through mumps::Factorization from this rank's rows of A, S = A
+  /// or (with halves) its symmetric part; the largest error on rank 0.
   double solve_error(const std::vector<std::vector<double>> &A, const Epetra_Map &map,
-                     const bool symmetric, std::vector<int> ordering)
+                     const Entries entries, std::vector<int> ordering)
   {
     std::vector<int>    rows, columns;
     std::vector<double> values;
@@ -94,14 +107,15 @@ namespace
       for (int j = 0; j < n; ++j)
         {
           const int row = map.GID(r);
-          if (A[row][j] != 0. && (!symmetric || j <= row))
-            {
-              rows.push_back(row);
-              columns.push_back(j);
-              values.push_back(A[row][j]);
-            }
+          if (A[row][j] == 0. || (entries == Entries::lower && j > row))
+            continue;
+          const bool half = entries == Entries::halves && j != row;
+          rows.push_back(half ? std::max(row, j) : row);
+          columns.push_back(half ? std::min(row, j) : j);
+          values.push_back(half ? 0.5 * A[row][j] : A[row][j]);
         }
-    mumps::Factorization factorization(MPI_COMM_WORLD, n, symmetric, rows, columns, values);
+    mumps::Factorization factorization(MPI_COMM_WORLD, n, entries != Entries::all, rows,
+                                       columns, values);
     AssertThrow(factorization.analyse(ordering, mumps::initial_workspace_percent) >= 0,
                 ExcMessage("analysis failed"));
     AssertThrow(factorization.factor() >= 0, ExcMessage("factorization failed"));
@@ -111,7 +125,7 @@ namespace
       x_exact[i] = std::sin(1. + i);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j)
-        b[i] += A[i][j] * x_exact[j];
+        b[i] += (entries == Entries::halves ? 0.5 * (A[i][j] + A[j][i]) : A[i][j]) * x_exact[j];
     const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
     if (!root)
       b.clear();
@@ -173,12 +187,14 @@ int main(int argc, char **argv)
     {
       const std::string how = ordered ? " (METIS, grouped)" : " (MUMPS's ordering)";
       const std::vector<int> ordering = ordered ? grouped : std::vector<int>();
-      double e = solve_error(A, map, false, ordering);
+      double e = solve_error(A, map, Entries::all, ordering);
       check(e <= tolerance, "LU of the symmetric saddle-point matrix" + how, sci(e));
-      e = solve_error(A, map, true, ordering);
+      e = solve_error(A, map, Entries::lower, ordering);
       check(e <= tolerance, "LDLT of its lower triangle" + how, sci(e));
-      e = solve_error(make_matrix(0.4), map, false, ordering);
+      e = solve_error(make_matrix(0.4), map, Entries::all, ordering);
       check(e <= tolerance, "LU of a non-symmetric one" + how, sci(e));
+      e = solve_error(make_matrix(0.4), map, Entries::halves, ordering);
+      check(e <= tolerance, "LDLT of its symmetric part, given in halves" + how, sci(e));
     }
   return summary();
 }

@@ -77,6 +77,9 @@ namespace fdparticle
     /// A rank's patch whose factorization would need more bytes than this is dropped
     /// (0: no limit).
     double patch_memory_limit = 0;
+    /// Where convection makes the patch non-symmetric, factor its symmetric part (LDLᵀ)
+    /// instead of the patch (LU).
+    bool symmetrize_patch = true;
     /// Whether S_p⁻¹ has its inertial term −ρ_f c0 L⁻¹: always, never, or (automatic)
     /// unless the pressure modes on which inertia outweighs viscosity (wavenumber below
     /// k* = √(ρ_f c0/μ), NewtonSystem::Blocks::slow_pressure_modes) are few and smooth
@@ -110,6 +113,8 @@ namespace fdparticle
     double patch_memory() const { return patch.memory(); }
     /// Whether the patch was symmetric and factored as such.
     bool patch_symmetric() const { return patch.symmetric(); }
+    /// Whether the patch was not symmetric and its symmetric part was factored.
+    bool patch_symmetric_part() const { return patch.symmetric_part_factored(); }
     /// Whether S_p⁻¹ has its inertial term (L and its AMG were built).
     bool with_inertia() const { return pressure_laplacian != nullptr; }
     /// Wall time of the last initialize() and of the patch's part of it (rank 0's, s).

@@ -41,7 +41,10 @@ namespace fdparticle
    * large particle's patch is shared by the ranks instead of held up by one. With its
    * multiplier rows negated the patch matrix is symmetric wherever the Jacobian has no
    * convection (Stokes, a fluid at rest), and is then factored as LDLᵀ: half the
-   * factors of LU, in about the same time. The patch is solved whole: solved
+   * factors of LU, in about the same time. Where convection makes it non-symmetric, its
+   * symmetric part is factored so (or the patch itself as LU, `symmetric_part` false):
+   * the correction's residual stays exact, only its local solve leaves out the
+   * antisymmetric part of the convection. The patch is solved whole: solved
    * approximately per rank where the partition cuts it, FGMRES stalled on 2 ranks at
    * 1 M unknowns (doc/scaling.md). With one ring the FGMRES count stops growing with
    * refinement, and the cheap form of the preconditioner (no inner solve) converges on
@@ -62,7 +65,8 @@ namespace fdparticle
     /// patch was not factored (it is then empty), the same on every rank, or an empty
     /// string. Collective.
     std::string initialize(const NewtonSystem &system, const unsigned int layers,
-                           const double max_fluid_fraction, const double memory_limit);
+                           const double max_fluid_fraction, const double memory_limit,
+                           const bool symmetric_part);
     void clear();
 
     /// x += R_patchᵀ A_patch⁻¹ R_patch (r − A x), in A's layout, where r is the
@@ -75,6 +79,8 @@ namespace fdparticle
     unsigned int size() const { return dofs.size(); }
     /// Whether the patch matrix was symmetric and factored as such (LDLᵀ).
     bool symmetric() const { return is_symmetric; }
+    /// Whether the patch matrix was not symmetric and its symmetric part was factored.
+    bool symmetric_part_factored() const { return factored_symmetric_part; }
     /// Memory that MUMPS allocated for the factorization on the rank that needed most, in
     /// bytes (INFOG(18)); the same on every rank.
     double memory() const { return factor_memory; }
@@ -99,7 +105,8 @@ namespace fdparticle
     void assemble(const NewtonSystem &system, const std::vector<bool> &row_cells);
     /// Factor the patch matrix unless it would need more than memory_limit bytes on one
     /// rank (0: no limit), and release it; returns why not, or an empty string. Collective.
-    std::string factor(const double memory_limit, const MPI_Comm comm);
+    std::string factor(const double memory_limit, const bool symmetric_part,
+                       const MPI_Comm comm);
     /// Whether the patch matrix is symmetric, by x·My = y·Mx for two vectors fixed by the
     /// patch numbering (the same answer on any number of ranks) to 10⁻¹² of the scale of
     /// their terms. Collective.
@@ -113,7 +120,7 @@ namespace fdparticle
     /// §0), so with these rows negated the patch matrix is symmetric wherever A's velocity
     /// block is (no convection in the Jacobian), and MUMPS factors it as such.
     std::vector<bool> negated;
-    bool              is_symmetric = false;
+    bool              is_symmetric = false, factored_symmetric_part = false;
     /// For each of this rank's patch DoFs, the patch number of the DoF it is ordered with
     /// (mumps::nested_dissection): a multiplier DoF with the velocity DoF at its node and
     /// component, the others with themselves. Kept until ordered.
