@@ -60,10 +60,11 @@ namespace fdparticle
 
     /// Collect the patch of the current system and factor it: the cut cells whose fluid
     /// part is at most max_fluid_fraction of the cell, and `layers` rings of cells
-    /// beyond them. A patch whose factorization would need more than memory_limit bytes
-    /// on one rank (by MUMPS's analysis; 0: no limit) is not factored. Returns why the
-    /// patch was not factored (it is then empty), the same on every rank, or an empty
-    /// string. Collective.
+    /// beyond them; a patch that is not symmetric is factored by its symmetric part if
+    /// symmetric_part, else as LU. A patch whose factorization would need more than
+    /// memory_limit bytes on one rank (by MUMPS's analysis; 0: no limit) is not factored.
+    /// Returns why the patch was not factored (it is then empty), the same on every rank,
+    /// or an empty string. Collective.
     std::string initialize(const NewtonSystem &system, const unsigned int layers,
                            const double max_fluid_fraction, const double memory_limit,
                            const bool symmetric_part);

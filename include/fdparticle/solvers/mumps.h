@@ -54,7 +54,8 @@ namespace fdparticle
     public:
       /// The n × n matrix of which this rank holds the entries (rows[k], columns[k],
       /// values[k]), numbered 0 … n − 1; they are kept until factored. A symmetric
-      /// matrix is given by its entries with rows[k] ≥ columns[k] only. Collective.
+      /// matrix is given by its entries with rows[k] ≥ columns[k] only. Entries given
+      /// at the same place are summed (MUMPS's assembled input). Collective.
       Factorization(const MPI_Comm comm, const int n, const bool symmetric,
                     std::vector<int> rows, std::vector<int> columns,
                     std::vector<double> values);
