@@ -6,10 +6,10 @@
 # through the geometry, so F_y(s) shows directly whether the discrete problem changes
 # continuously as the disk moves across the mesh, and which cell events cause the steps
 # (a cell starting or stopping to be cut, a cut cell becoming inside or the reverse).
-# Variants: the multiplier defaults before commit 42ce90f (no ramp, Strain penalty 0.05,
-# interior pressure penalty delta = 1), the ramp as introduced in commit 13a8c20 (ramp 0.2,
-# s_e 0.15, delta = 1) and the current defaults (ramp 0.2, s_e 0.15, delta = 1e-3), and
-# the defaults with pressure agglomeration (Quadrature/Pressure agglomeration = 0.25).
+# Variants: no_ramp (Penalty ramp 0, Strain penalty 0.05, Interior pressure penalty
+# delta = 1), ramp_delta1 (ramp 0.2, s_e 0.15, delta = 1), default (ramp 0.2, s_e 0.15,
+# delta = 1e-3) and agglomerated (the defaults with Quadrature/Pressure agglomeration =
+# 0.25).
 # Writes doc/position_sweep.csv (s, F_y per variant), doc/position_sweep.png and prints the
 # RMS of the second difference of F_y over s (0 for a smooth curve sampled finely).
 # Usage: bash benchmarks/position_sweep.sh        (~6 min on 2 cores; finished runs in
@@ -23,8 +23,8 @@ mkdir -p "$work"
 
 settings() {
   case $1 in
-    session5) printf 'subsection Multiplier\n  set Penalty ramp = 0\n  set Strain penalty = 0.05\n  set Interior pressure penalty = 1\nend\n' ;;
-    ramp5) printf 'subsection Multiplier\n  set Interior pressure penalty = 1\nend\n' ;;
+    no_ramp) printf 'subsection Multiplier\n  set Penalty ramp = 0\n  set Strain penalty = 0.05\n  set Interior pressure penalty = 1\nend\n' ;;
+    ramp_delta1) printf 'subsection Multiplier\n  set Interior pressure penalty = 1\nend\n' ;;
     default) ;;
     agglomerated) printf 'subsection Quadrature\n  set Pressure agglomeration = 0.25\nend\n' ;;
   esac
@@ -71,7 +71,7 @@ EOF
 export -f one settings
 export exe work
 
-variants="session5 ramp5 default agglomerated"
+variants="no_ramp ramp_delta1 default agglomerated"
 for v in $variants; do
   seq 0 100 | xargs -P 2 -I{} bash -c "one $v {}"
 done
