@@ -391,6 +391,23 @@ namespace fdparticle
       rule.owner[q] = particles.locate(points[q]);
   }
 
+  template <int dim>
+  double CutCellQuadrature<dim>::particle_fraction(const typename Triangulation<dim>::cell_iterator &cell,
+                                                   const ParticleSet<dim> &particles,
+                                                   const Mapping<dim> &    mapping) const
+  {
+    CellRule rule;
+    reinit(cell, particles, rule);
+    if (rule.kind != CellKind::cut)
+      return rule.particle_fraction({});
+    const std::vector<Point<dim>> &unit = rule.quadrature->get_points();
+    std::vector<Point<dim>>        real(unit.size());
+    for (unsigned int q = 0; q < unit.size(); ++q)
+      real[q] = mapping.transform_unit_to_real_cell(cell, unit[q]);
+    assign_owners(real, particles, rule);
+    return rule.particle_fraction(rule.quadrature->get_weights());
+  }
+
   template class CutCellQuadrature<2>;
   template class CutCellQuadrature<3>;
 } // namespace fdparticle

@@ -32,20 +32,6 @@ namespace fdparticle
       return rule.kind == CellKind::cut ? cut : regular;
     }
 
-    /// Particle fraction θ of a cut cell: its quadrature weights inside a particle over all.
-    template <int dim>
-    double particle_fraction_of(const FEValues<dim> &                            fv,
-                                const typename CutCellQuadrature<dim>::CellRule &rule)
-    {
-      double inside = 0, total = 0;
-      for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
-        {
-          total += fv.JxW(q);
-          inside += (rule.owner[q] >= 0 ? fv.JxW(q) : 0.0);
-        }
-      return inside / total;
-    }
-
     /// The unknowns of a free particle: its columns of B and Cᵀ.
     template <int dim>
     std::vector<types::global_dof_index> unknowns_of(const Particle<dim> &particle)
@@ -163,6 +149,7 @@ namespace fdparticle
         blocks.pressure_fluid_mass.assign(n_pressure * n_p, 0.0);
         blocks.pressure_mass.assign(n_pressure * n_p, 0.0);
         blocks.cell_particle.assign(n_pressure / n_p, -1);
+        blocks.cell_fluid_fraction.assign(n_pressure / n_p, 1.0);
         blocks.velocity_mass = TrilinosWrappers::MPI::Vector(system.r_fe); // zero here
       }
     Vector<double> local_velocity_mass(n);
@@ -193,7 +180,7 @@ namespace fdparticle
         const unsigned int nq = fv.n_quadrature_points;
         s.kind = rule.kind;
         s.has_particle = rule.has_particle_point();
-        s.particle_fraction = (rule.kind == CellKind::cut ? particle_fraction_of(fv, rule) : 0.0);
+        s.particle_fraction = (rule.kind == CellKind::cut ? rule.particle_fraction(fv.get_JxW_values()) : 0.0);
         cell->get_dof_values(solution, local_solution);
         cell->get_dof_values(history, local_history);
         s.reinit(fv, fv_p, local_solution, local_history);
@@ -278,6 +265,8 @@ namespace fdparticle
                         fluid_part[a * n_p + b] += m;
                     }
                 }
+            blocks.cell_fluid_fraction[first / n_p] =
+              1 - rule.particle_fraction(fv.get_JxW_values());
             // The particle with the most quadrature points in the cell (the lowest index
             // of a tie), or none.
             if (s.has_particle)
@@ -457,26 +446,9 @@ namespace fdparticle
   Vector<float> NavierStokesAssembler<dim>::particle_fraction(const DoFHandler<dim> &dof_handler) const
   {
     Vector<float> fraction(dof_handler.get_triangulation().n_active_cells());
-    const UpdateFlags flags = update_quadrature_points | update_JxW_values;
-    FEValues<dim> fe_regular(mapping, fe, quadrature.regular_rule(), flags);
-    FEValues<dim> fe_cut(mapping, fe, quadrature.cut_rule(), flags);
-    std::unique_ptr<FEValues<dim>>            fe_cell_specific;
-    typename CutCellQuadrature<dim>::CellRule rule;
     for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        quadrature.reinit(cell, particles, rule);
-        if (rule.kind == CellKind::inside)
-          fraction[cell->active_cell_index()] = 1;
-        else if (rule.kind == CellKind::cut)
-          {
-            FEValues<dim> &fv = fe_values_for<dim>(rule, fe_regular, fe_cut, fe_cell_specific);
-            fv.reinit(cell);
-            quadrature.assign_owners(fv.get_quadrature_points(), particles, rule);
-            fraction[cell->active_cell_index()] = particle_fraction_of(fv, rule);
-          }
-      }
+      if (cell->is_locally_owned())
+        fraction[cell->active_cell_index()] = quadrature.particle_fraction(cell, particles, mapping);
     return fraction;
   }
 

@@ -42,31 +42,6 @@ namespace fdparticle
   {}
 
   template <int dim>
-  double PressureAgglomeration<dim>::fluid_fraction(
-    const typename DoFHandler<dim>::active_cell_iterator &cell) const
-  {
-    typename CutCellQuadrature<dim>::CellRule rule;
-    quadrature.reinit(cell, particles, rule);
-    if (rule.kind == CellKind::fluid)
-      return 1;
-    if (rule.kind == CellKind::inside)
-      return 0;
-    const std::vector<Point<dim>> &unit    = rule.quadrature->get_points();
-    const std::vector<double> &    weights = rule.quadrature->get_weights();
-    std::vector<Point<dim>>        real(unit.size());
-    for (unsigned int q = 0; q < unit.size(); ++q)
-      real[q] = mapping.transform_unit_to_real_cell(cell, unit[q]);
-    quadrature.assign_owners(real, particles, rule);
-    double fluid = 0, whole = 0;
-    for (unsigned int q = 0; q < weights.size(); ++q)
-      {
-        whole += weights[q];
-        fluid += (rule.owner[q] < 0 ? weights[q] : 0.0);
-      }
-    return fluid / whole;
-  }
-
-  template <int dim>
   std::vector<typename PressureAgglomeration<dim>::Link>
   PressureAgglomeration<dim>::links(const DoFHandler<dim> &dof_handler) const
   {
@@ -78,7 +53,7 @@ namespace fdparticle
     auto fraction_of = [&](const typename DoFHandler<dim>::active_cell_iterator &cell) {
       double &f = fraction[cell->active_cell_index()];
       if (f < 0)
-        f = fluid_fraction(cell);
+        f = 1 - quadrature.particle_fraction(cell, particles, mapping);
       return f;
     };
 

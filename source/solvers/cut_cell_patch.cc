@@ -109,23 +109,15 @@ namespace fdparticle
 
     row_cells.assign(n_cells, false);
     std::vector<unsigned int> new_cells;
-    // Seeds: the cells with a particle part whose fluid part is at most
-    // max_fluid_fraction of the cell (the pressure mass over the fluid part sums the same
-    // terms as the whole where all points are fluid, none where all are the particle's, so
-    // both ends compare exactly). That takes the cells inside the particles too: there p
-    // and λ are jointly undetermined but for the penalties, and the cheap form of the
+    // Seeds: the cells with a particle part whose fluid fraction is at most
+    // max_fluid_fraction. That takes the cells inside the particles too: there p and λ are
+    // jointly undetermined but for the penalties, and the cheap form of the
     // preconditioner, which does not solve J_w, needs the patch to resolve that pair even
     // where the central cells lie more than a ring away from the cut cells.
     for (unsigned int c = 0; c < n_cells; ++c)
       {
-        double fluid = 0, whole = 0;
-        for (unsigned int i = 0; i < npc; ++i)
-          {
-            const unsigned int k = (c * npc + i) * npc + i;
-            fluid += b.pressure_fluid_mass[k];
-            whole += b.pressure_mass[k];
-          }
-        if (fluid < whole && fluid <= max_fluid_fraction * whole)
+        const double fluid = b.cell_fluid_fraction[c];
+        if (fluid < 1 && fluid <= max_fluid_fraction)
           {
             Assert(b.cell_particle[c] >= 0, ExcInternalError());
             cell_label[c] = b.cell_particle[c];

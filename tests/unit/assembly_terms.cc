@@ -127,13 +127,11 @@ namespace
       s.kind = kind;
       s.cut_particle = 0;
       s.has_particle = std::any_of(owner.begin(), owner.end(), [](int k) { return k >= 0; });
-      double inside = 0, total = 0;
-      for (unsigned int q = 0; q < nq; ++q)
-        {
-          total += fv.JxW(q);
-          inside += (owner[q] >= 0 ? fv.JxW(q) : 0.0);
-        }
-      s.particle_fraction = inside / total;
+      typename CutCellQuadrature<dim>::CellRule rule;
+      rule.kind  = kind;
+      rule.owner = owner;
+      s.particle_fraction =
+        (kind == CellKind::cut ? rule.particle_fraction(fv.get_JxW_values()) : 0.0);
       // The iterate at the points, from the local coefficients (every shape function has
       // one field and one component).
       // AssemblyScratch evaluates from the scalar elements; here the FESystem's shape

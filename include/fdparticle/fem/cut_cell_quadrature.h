@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/mapping.h>
 #include <deal.II/grid/cell_id.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/hp/q_collection.h>
@@ -59,6 +60,24 @@ namespace fdparticle
       {
         return std::any_of(owner.begin(), owner.end(), [](int k) { return k >= 0; });
       }
+
+      /// The particle fraction θ_K of the cell (doc/method.md §4 "Penalty ramp", §7): 0 for
+      /// a fluid cell, 1 inside a particle, else the weights (JxW or the rule's own, which
+      /// differ by the constant Jacobian of an axis-aligned cell) at the points a particle
+      /// owns over all. A cut cell's owners must be known (assign_owners).
+      double particle_fraction(const std::vector<double> &weights) const
+      {
+        if (kind != CellKind::cut)
+          return kind == CellKind::inside ? 1.0 : 0.0;
+        AssertDimension(weights.size(), owner.size());
+        double inside = 0, total = 0;
+        for (unsigned int q = 0; q < weights.size(); ++q)
+          {
+            total += weights[q];
+            inside += (owner[q] >= 0 ? weights[q] : 0.0);
+          }
+        return inside / total;
+      }
     };
 
     /// How cut cells are integrated.
@@ -104,6 +123,10 @@ namespace fdparticle
     /// Set the owners once the real-space points of rule are known (Gauss rule only).
     void assign_owners(const std::vector<Point<dim>> &points,
                        const ParticleSet<dim> &particles, CellRule &rule) const;
+
+    /// The particle fraction θ_K of a cell (CellRule::particle_fraction), its rule made here.
+    double particle_fraction(const typename Triangulation<dim>::cell_iterator &cell,
+                             const ParticleSet<dim> &particles, const Mapping<dim> &mapping) const;
 
   private:
     /// The level-set rule of a cut cell (rule.balls known), mapped to the unit cell, with

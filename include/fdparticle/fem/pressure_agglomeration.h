@@ -54,10 +54,6 @@ namespace fdparticle
     static void add_to(const std::vector<Link> &links, AffineConstraints<double> &constraints);
 
   private:
-    /// The fluid part of a cell that is locally owned or a ghost: 1 for a fluid cell, 0
-    /// inside a particle, else its quadrature weights outside the particles over all.
-    double fluid_fraction(const typename DoFHandler<dim>::active_cell_iterator &cell) const;
-
     const FESystem<dim> &         fe;
     const Mapping<dim> &          mapping;
     const ParticleSet<dim> &      particles;

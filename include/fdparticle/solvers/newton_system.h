@@ -140,6 +140,9 @@ namespace fdparticle
       /// covers most of its quadrature points, or −1: which particle's cut-cell patch a
       /// cell seeds. Written with the pressure masses.
       std::vector<int> cell_particle;
+      /// For each owned cell (the same order), its fluid fraction 1 − θ_K (doc/method.md
+      /// §7): 1 for a fluid cell, 0 inside a particle. Written with the pressure masses.
+      std::vector<double> cell_fluid_fraction;
       /// The diagonal of the velocity mass matrix (0 at constrained DoFs), in r_fe's
       /// layout, written with the pressure masses.
       TrilinosWrappers::MPI::Vector velocity_mass;
