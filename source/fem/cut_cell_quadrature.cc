@@ -392,9 +392,9 @@ namespace fdparticle
   }
 
   template <int dim>
-  double CutCellQuadrature<dim>::particle_fraction(const typename Triangulation<dim>::cell_iterator &cell,
-                                                   const ParticleSet<dim> &particles,
-                                                   const Mapping<dim> &    mapping) const
+  double CutCellQuadrature<dim>::particle_fraction(
+    const typename Triangulation<dim>::cell_iterator &cell, const ParticleSet<dim> &particles,
+    const Mapping<dim> &mapping) const
   {
     CellRule rule;
     reinit(cell, particles, rule);

@@ -180,7 +180,8 @@ namespace fdparticle
         const unsigned int nq = fv.n_quadrature_points;
         s.kind = rule.kind;
         s.has_particle = rule.has_particle_point();
-        s.particle_fraction = (rule.kind == CellKind::cut ? rule.particle_fraction(fv.get_JxW_values()) : 0.0);
+        s.particle_fraction =
+          (rule.kind == CellKind::cut ? rule.particle_fraction(fv.get_JxW_values()) : 0.0);
         cell->get_dof_values(solution, local_solution);
         cell->get_dof_values(history, local_history);
         s.reinit(fv, fv_p, local_solution, local_history);
