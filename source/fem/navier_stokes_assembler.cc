@@ -180,8 +180,8 @@ namespace fdparticle
         const unsigned int nq = fv.n_quadrature_points;
         s.kind = rule.kind;
         s.has_particle = rule.has_particle_point();
-        s.particle_fraction =
-          (rule.kind == CellKind::cut ? rule.particle_fraction(fv.get_JxW_values()) : 0.0);
+        const double theta  = rule.particle_fraction(fv.get_JxW_values());
+        s.particle_fraction = (rule.kind == CellKind::cut ? theta : 0.0);
         cell->get_dof_values(solution, local_solution);
         cell->get_dof_values(history, local_history);
         s.reinit(fv, fv_p, local_solution, local_history);
@@ -266,8 +266,7 @@ namespace fdparticle
                         fluid_part[a * n_p + b] += m;
                     }
                 }
-            blocks.cell_fluid_fraction[first / n_p] =
-              1 - rule.particle_fraction(fv.get_JxW_values());
+            blocks.cell_fluid_fraction[first / n_p] = 1 - theta;
             // The particle with the most quadrature points in the cell (the lowest index
             // of a tie), or none.
             if (s.has_particle)
