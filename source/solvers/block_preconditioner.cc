@@ -63,6 +63,65 @@ namespace fdparticle
     multiplier_matrix.reset();
     coupling_matrix.reset();
     gradient_matrix.reset();
+    column_values.reset();
+    coupled_velocity_rows.clear();
+  }
+
+  void BlockPreconditioner::gradient_product(const double *p, double *y) const
+  {
+    const Epetra_CrsMatrix &E = system->A.trilinos_matrix();
+    if (!column_values)
+      column_values = std::make_unique<Epetra_Vector>(E.ColMap());
+    column_values->PutScalar(0);
+    double *yc = column_values->Values();
+    for (unsigned int r = 0; r < owned[pressure_block].n_elements(); ++r)
+      {
+        int     n;
+        double *v;
+        int *   c;
+        E.ExtractMyRowView(local_offset[pressure_block] + r, n, v, c);
+        for (int k = 0; k < n; ++k)
+          yc[c[k]] += v[k] * p[r];
+      }
+    // Columns of other ranks' DoFs are added at their owners; the pressure columns' sums
+    // (the pressure block's own entries) are left out.
+    const unsigned int n_u = owned[velocity_block].n_elements();
+    if (const Epetra_Import *importer = E.Importer())
+      {
+        full = 0;
+        full.trilinos_vector().Export(*column_values, *importer, Add);
+        std::copy_n(values(full) + local_offset[velocity_block], n_u, y);
+      }
+    else
+      std::copy_n(yc + local_offset[velocity_block], n_u, y);
+  }
+
+  void BlockPreconditioner::coupling_product(const TrilinosWrappers::MPI::Vector &l,
+                                             double *                             y) const
+  {
+    const Epetra_CrsMatrix &E = system->A.trilinos_matrix();
+    if (!column_values)
+      column_values = std::make_unique<Epetra_Vector>(E.ColMap());
+    full = 0;
+    scatter_multipliers(l, values(full) + local_offset[multiplier_block]);
+    if (const Epetra_Import *importer = E.Importer())
+      column_values->Import(full.trilinos_vector(), *importer, Insert);
+    else
+      std::copy_n(values(full), E.NumMyCols(), column_values->Values());
+    const double *xc = column_values->Values();
+    std::fill_n(y, owned[velocity_block].n_elements(), 0.0);
+    for (const unsigned int r : coupled_velocity_rows)
+      {
+        int     n;
+        double *v;
+        int *   c;
+        E.ExtractMyRowView(local_offset[velocity_block] + r, n, v, c);
+        // full is zero outside the free multipliers: the rows' pressure entries add 0.
+        double sum = 0;
+        for (int k = 0; k < n; ++k)
+          sum += v[k] * xc[c[k]];
+        y[r] = sum;
+      }
   }
 
   std::unique_ptr<Epetra_CrsMatrix>
@@ -306,8 +365,32 @@ namespace fdparticle
     // Without particles no multiplier is free, and S_λ has no rows.
     if (owned_free_multipliers.size() > 0)
       multiplier_amg.initialize(*multiplier_matrix, amg);
-    coupling_matrix = extract(velocity_block, {multiplier_block});
-    gradient_matrix = extract(velocity_block, {pressure_block});
+    coupled_velocity_rows.clear();
+    if (!system->blocks.velocity_product)
+      {
+        coupling_matrix = extract(velocity_block, {multiplier_block});
+        gradient_matrix = extract(velocity_block, {pressure_block});
+      }
+    else
+      {
+        const Epetra_CrsMatrix &E = system->A.trilinos_matrix();
+        std::vector<bool>       multiplier_column(E.NumMyCols());
+        for (int c = 0; c < E.NumMyCols(); ++c)
+          multiplier_column[c] = system->blocks.locate(E.GCID(c)).first == multiplier_block;
+        for (unsigned int r = 0; r < owned[velocity_block].n_elements(); ++r)
+          {
+            int     n;
+            double *v;
+            int *   c;
+            E.ExtractMyRowView(local_offset[velocity_block] + r, n, v, c);
+            for (int k = 0; k < n; ++k)
+              if (multiplier_column[c[k]])
+                {
+                  coupled_velocity_rows.push_back(r);
+                  break;
+                }
+          }
+      }
   }
 
   void BlockPreconditioner::initialize_pressure_cells()
@@ -369,12 +452,14 @@ namespace fdparticle
       inverse_mass[i] = (m[i] > 0 ? 1.0 / m[i] : 0.0);
     // G M_u⁻¹, in place: G itself is not needed again.
     G->RightScale(inverse_mass);
-    // Gᵀ is A's velocity–pressure block, already extracted (the u–p blocks are
-    // transposes, doc/method.md §3): no transpose is formed, and EpetraExt's product with
+    // Gᵀ is A's velocity–pressure block (the u–p blocks are transposes, doc/method.md §3),
+    // extracted unless it already is: no transpose is formed, and EpetraExt's product with
     // a transposed second factor is many times slower than the plain product.
-    Assert(gradient_matrix, ExcInternalError());
+    const auto gradient = gradient_matrix ? nullptr : extract(velocity_block, {pressure_block});
     Epetra_CrsMatrix product(Copy, G->RowMap(), 0);
-    int error = EpetraExt::MatrixMatrix::Multiply(*G, false, *gradient_matrix, false, product);
+    int error = EpetraExt::MatrixMatrix::Multiply(*G, false,
+                                                  gradient ? *gradient : *gradient_matrix,
+                                                  false, product);
     AssertThrow(error == 0, ExcInternalError());
 
     // The pressure level is in L's kernel, and a pinned pressure DoF has an empty row:
@@ -481,7 +566,10 @@ namespace fdparticle
     op->set_particle_part(dst, y);
 
     // u = K⁻¹ (r_u − A_uλ λ).
-    coupling_matrix->Multiply(false, l_out.trilinos_vector(), u_out.trilinos_vector());
+    if (coupling_matrix)
+      coupling_matrix->Multiply(false, l_out.trilinos_vector(), u_out.trilinos_vector());
+    else
+      coupling_product(l_out, values(u_out));
     const double *t  = values(u_out);
     double *      ui = values(u_in);
     for (unsigned int i = 0; i < n_u; ++i)
@@ -553,8 +641,13 @@ namespace fdparticle
 
     // J_w w = r_w − J_wp p (only the velocity rows see the pressure: A_up p, a product
     // with a tenth of A's entries).
-    std::copy_n(p, n_p, values(p_in));
-    gradient_matrix->Multiply(false, p_in.trilinos_vector(), u_out.trilinos_vector());
+    if (gradient_matrix)
+      {
+        std::copy_n(p, n_p, values(p_in));
+        gradient_matrix->Multiply(false, p_in.trilinos_vector(), u_out.trilinos_vector());
+      }
+    else
+      gradient_product(p, values(u_out));
     inner_rhs = src;
     {
       double *      ri = values(inner_rhs.block(0));

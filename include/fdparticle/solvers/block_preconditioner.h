@@ -190,7 +190,8 @@ namespace fdparticle
 
     /// The parts of initialize(), one per block, in the order they must run (the particle
     /// block uses the multiplier AMG):
-    /// the AMGs of K and A_λλ + A_λu, and A_uλ and A_up;
+    /// the AMGs of K and A_λλ + A_λu, and A_uλ and A_up (or the velocity rows that
+    /// coupling_product() reads);
     void initialize_velocity_and_multiplier();
     /// the cell-local viscous term of S_p⁻¹;
     void initialize_pressure_cells();
@@ -221,9 +222,23 @@ namespace fdparticle
     /// Where each block's owned entries start in the local array of an A-layout vector.
     std::vector<unsigned int> local_offset;
 
-    /// A_uu, A_λλ + A_λu (both in the λ numbering), A_uλ and A_up, from the blocks of A.
+    /// A_uu, A_λλ + A_λu (both in the λ numbering), A_uλ and A_up, from the blocks of A;
+    /// A_uu, A_uλ and A_up only where A holds the velocity block. Without it A's velocity
+    /// and pressure rows hold little but A_uλ, A_up and A_pu, and coupling_product() and
+    /// gradient_product() read them in place instead of copies.
     std::unique_ptr<Epetra_CrsMatrix> velocity_matrix, multiplier_matrix, coupling_matrix,
       gradient_matrix;
+    /// y = A_uλ l (the velocity block's local part; l on the free multipliers) from A's
+    /// velocity rows that have a multiplier entry.
+    void coupling_product(const TrilinosWrappers::MPI::Vector &l, double *y) const;
+    /// y = A_up p (the velocity block's local part) from A's pressure rows, as A_puᵀ p
+    /// (the u–p blocks are transposes, doc/method.md §3): only A_pu's entries are read.
+    void gradient_product(const double *p, double *y) const;
+    /// The velocity rows of A with an entry in a multiplier column (the velocities of the
+    /// particles' cells), by their local number in the velocity block.
+    std::vector<unsigned int> coupled_velocity_rows;
+    /// A vector in A's column layout, for coupling_product() and gradient_product().
+    mutable std::unique_ptr<Epetra_Vector> column_values;
     TrilinosWrappers::PreconditionAMG velocity_amg, multiplier_amg;
     /// The program's inverse of A_uu (NewtonSystem::Blocks::velocity_inverse) in place of
     /// velocity_amg, if it gives one.
