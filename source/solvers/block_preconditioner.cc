@@ -100,15 +100,17 @@ namespace fdparticle
                                              double *                             y) const
   {
     const Epetra_CrsMatrix &E = system->A.trilinos_matrix();
-    if (!column_values)
-      column_values = std::make_unique<Epetra_Vector>(E.ColMap());
     full = 0;
     scatter_multipliers(l, values(full) + local_offset[multiplier_block]);
-    if (const Epetra_Import *importer = E.Importer())
-      column_values->Import(full.trilinos_vector(), *importer, Insert);
-    else
-      std::copy_n(values(full), E.NumMyCols(), column_values->Values());
-    const double *xc = column_values->Values();
+    // Without an importer A's columns are its rows, in their order: full itself.
+    const Epetra_Import *importer = E.Importer();
+    if (importer)
+      {
+        if (!column_values)
+          column_values = std::make_unique<Epetra_Vector>(E.ColMap());
+        column_values->Import(full.trilinos_vector(), *importer, Insert);
+      }
+    const double *xc = importer ? column_values->Values() : values(full);
     std::fill_n(y, owned[velocity_block].n_elements(), 0.0);
     for (const unsigned int r : coupled_velocity_rows)
       {
