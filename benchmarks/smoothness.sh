@@ -11,6 +11,8 @@
 #             Strain penalty = 0.05, Interior pressure penalty = 1; doc/method.md §4)
 #   rampold   adaptls with the ramp of commit 13a8c20 (Penalty ramp = 0.2, Strain penalty = 0.15,
 #             Interior pressure penalty = 1)
+#   VARIANTit   the variant with the iterative linear solver (Linear solver = iterative); the
+#             others use the scene's solver (direct)
 # Each run checkpoints every 20 steps into a persistent work directory and resumes from
 # there when started again, so the long runs can be spread over several invocations.
 # After the runs, doc/smoothness.csv (one row per run) and doc/smoothness_SCENE.png
@@ -22,7 +24,7 @@
 #   bash benchmarks/smoothness.sh sediment2d:{seed,levelset,adaptive,adaptls}:100
 #   bash benchmarks/smoothness.sh --report          (only the table and plots)
 # Each argument is SCENE:VARIANT:END_TIME. WORK=DIR overrides the work directory, EXE=PATH
-# the executable. TAG=NAME writes doc/smoothness_NAME.csv and doc/smoothness_SCENE_NAME.png
+# the executable, RANKS=N runs on N MPI ranks (default 1). TAG=NAME writes doc/smoothness_NAME.csv and doc/smoothness_SCENE_NAME.png
 # instead, so runs over a shorter window (in their own work directory) keep the full runs'
 # table and figures.
 set -uo pipefail
@@ -41,6 +43,8 @@ variant_settings() { # variant -> prm lines appended at the end (later entries w
              printf 'subsection Multiplier\n  set Interior pressure penalty = 1\nend\n' ;;
     *old) variant_settings "${1%old}"
           printf 'subsection Multiplier\n  set Penalty ramp = 0\n  set Strain penalty = 0.05\n  set Interior pressure penalty = 1\nend\n' ;;
+    *it) variant_settings "${1%it}"
+         printf 'subsection Solver\n  set Linear solver = iterative\nend\n' ;;
     long) variant_settings seed ;;  # the seed variant continued to t = 1000 (doc/stability.md)
     adaptls) printf 'subsection Quadrature\n  set Cut cells = level set\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
     *) echo "unknown variant $1" >&2; exit 2 ;;
@@ -63,7 +67,7 @@ run() { # scene variant end_time
     printf 'subsection Checkpointing\n  set Interval = 20\n  set Resume = %s\nend\n' "$resume"
   } > "$prm"
   echo "$(date +%T) $scene/$variant to t = $end (log $dir.log)"
-  "$exe" "$prm" >> "$dir.log" 2>&1
+  bash "$top/scripts/mpirun.sh" "${RANKS:-1}" "$exe" "$prm" >> "$dir.log" 2>&1
   echo "$(date +%T) $scene/$variant: exit $?"
 }
 

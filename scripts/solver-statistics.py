@@ -1,12 +1,17 @@
 #!/usr/bin/python3
 """Print named numbers of the first "iterative solver:" line of a run's output.
 
-    scripts/solver-statistics.py LOG NAME...
+    scripts/solver-statistics.py [--run] LOG NAME...
 
 `Solver/Iterative solver statistics = true` makes the program print that line for every
 linear solve (IterativeSolver::solve); the first one is the solve that built the
 preconditioner. The numbers are printed comma-separated in the order asked for, so the
 benchmark scripts do not each parse the line their own way. Names: see FIELDS.
+
+--run: the totals over every solve of the run instead (a run with many steps rebuilds its
+preconditioner many times): sums of the per-solve numbers; of the set-up times, the sum over
+the builds; of patch_apply_seconds, which each line counts from the last build, the sum of
+each build's last value. Only the times and iteration counts can be totalled.
 """
 
 import re
@@ -35,21 +40,52 @@ FIELDS = {
     "particle_block_seconds": r"particle block " + NUMBER + r" s",
 }
 
+# The numbers that --run can total; the rest describe one solve.
+TOTALS = {"outer_iterations", "inner_iterations", "setup_seconds", "patch_setup_seconds",
+          "iterate_seconds", "patch_apply_seconds", "product_seconds",
+          "velocity_cycle_seconds", "multiplier_cycle_seconds", "particle_block_seconds"}
+
+
+def number(line, name, log):
+    m = re.search(FIELDS[name], line)
+    if m is None:
+        sys.exit(f"{log}: the statistics line has no {name}")
+    return m.group(1)
+
+
+def run_total(lines, name, log):
+    if name in ("setup_seconds", "patch_setup_seconds"):
+        return sum(float(number(l, name, log)) for l in lines if "built in" in l)
+    if name == "patch_apply_seconds":
+        total, last = 0.0, 0.0
+        for l in lines:
+            if "built in" in l:
+                total += last
+            last = float(number(l, name, log))
+        return total + last
+    return sum(float(number(l, name, log)) for l in lines)
+
+
 def main(argv):
+    run = len(argv) > 1 and argv[1] == "--run"
+    if run:
+        argv = argv[:1] + argv[2:]
     if len(argv) < 3:
         sys.exit(__doc__ + "\n" + "".join(f"    {name}\n" for name in FIELDS))
     with open(argv[1], encoding="utf-8", errors="replace") as f:
-        line = next((l for l in f if "iterative solver:" in l), None)
-    if line is None:
+        lines = [l for l in f if "iterative solver:" in l]
+    if not lines:
         sys.exit(f"{argv[1]}: no 'iterative solver:' line (Iterative solver statistics off?)")
     values = []
     for name in argv[2:]:
         if name not in FIELDS:
             sys.exit(f"unknown name {name}; known: {', '.join(FIELDS)}")
-        m = re.search(FIELDS[name], line)
-        if m is None:
-            sys.exit(f"{argv[1]}: the statistics line has no {name}")
-        values.append(m.group(1))
+        if not run:
+            values.append(number(lines[0], name, argv[1]))
+        elif name in TOTALS:
+            values.append(f"{run_total(lines, name, argv[1]):.6g}")
+        else:
+            sys.exit(f"{name} describes one solve and has no total over a run")
     print(",".join(values))
 
 
