@@ -19,6 +19,7 @@ work="${WORK:-$top/benchmarks/work/adaptive_step_cost}"
 ranks_list="${RANKS:-1 2}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
+. "$top/benchmarks/scaling_scenes.sh"
 csv="$top/doc/adaptive_step_cost.csv"
 date=$(date -u +%Y-%m-%d); commit=$(git -C "$top" rev-parse --short HEAD)
 
@@ -30,8 +31,7 @@ scene() { # name solver directory -> prm on stdout
   esac
   sed -e "s#^\(\s*set Directory\s*=\).*#\1 $3#" -e "s/^\(\s*set VTU interval\s*=\).*/\1 0/" \
       -e "s/^\(\s*set End time\s*=\).*/\1 $(awk -v a="$dt" -v b="$steps" "BEGIN { print a * b }")/" "$top/prm/$1.prm"
-  printf 'subsection Quadrature\n  set Cut cells = level set\nend\n'
-  printf 'subsection Refinement\n  set Particle refinement levels = 2\nend\n'
+  adaptive_levelset
   printf 'subsection Solver\n  set Linear solver = %s\n  set Iterative solver statistics = true\nend\n' "$2"
 }
 

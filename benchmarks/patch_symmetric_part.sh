@@ -18,6 +18,7 @@ work="${WORK:-$top/benchmarks/work/patch_symmetric_part}"
 end_tencate="${END_TENCATE:-0.2}"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 mkdir -p "$work"
+. "$top/benchmarks/scaling_scenes.sh"
 csv="$top/doc/patch_symmetric_part.csv"
 date=$(date -u +%Y-%m-%d); commit=$(git -C "$top" rev-parse --short HEAD)
 
@@ -26,7 +27,7 @@ scene() { # name directory symmetric_part -> prm on stdout
     cavity)
       sed -e "s#^\(\s*set Directory\s*=\).*#\1 $2#" -e "s/^\(\s*set End time\s*=\).*/\1 0.02/" \
           -e "s/^\(\s*set VTU interval\s*=\).*/\1 0/" "$top/prm/cavity.prm"
-      printf 'subsection Quadrature\n  set Cut cells = level set\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
+      adaptive_levelset ;;
     tencate)
       sed -e "s#^\(\s*set Directory\s*=\).*#\1 $2#" -e "s/^\(\s*set End time\s*=\).*/\1 $end_tencate/" \
           -e "s/^\(\s*set Viscosity\s*=\).*/\1 0.058/" -e "s/^\(\s*set Density\s*=\).*/\1 960/" \

@@ -21,13 +21,13 @@ exe="${EXE:-$top/build/fdparticle}"
 label="${LABEL:-$(git -C "$top" rev-parse --short HEAD)}"
 work="${WORK:-$(mktemp -d)}"
 csv="$top/doc/preconditioner_reuse.csv"
+. "$top/benchmarks/scaling_scenes.sh"
 [ -f "$csv" ] || echo "build,scene,reuse,steps,jacobians,preconditioner_builds,fgmres,wall_seconds,peak_mb" > "$csv"
 
 scene_prm() { # scene -> the prm on stdout (output directory and end time set by run)
   case $1 in
     cavity) cat "$top/prm/cavity.prm"
-            printf 'subsection Quadrature\n  set Cut cells = level set\nend\n'
-            printf 'subsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
+            adaptive_levelset ;;
     dkt3d) cat "$top/prm/dkt3d.prm" ;;
   esac
 }

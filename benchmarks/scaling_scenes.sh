@@ -3,7 +3,9 @@
 #  - sediment n: the seed's sediment scene (box 1 x 2 x 1, sphere R = 0.2, rho_P = 1.5,
 #    mu = 1), Subdivisions n x 2n x n, one BDF1 Stokes step of 0.1;
 #  - array n: prm/validation/array3d.prm (a fixed sphere in a periodic cube, c = 0.064,
-#    dt = 100: steady Stokes), Subdivisions n x n x n, no particle refinement.
+#    dt = 100: steady Stokes), Subdivisions n x n x n, no particle refinement;
+#  - adaptive_levelset: the settings appended to a scene for the adaptive runs of
+#    doc/smoothness.md (variant adaptls): level-set cut cells, 2 particle refinement levels.
 
 sediment() { # n
   printf 'set Dimension = 3\nset Gravity = 0, -10, 0\n'
@@ -18,4 +20,9 @@ array() { # n
   sed "s/^  set Subdivisions .*/  set Subdivisions = $1, $1, $1/;
        s/^  set Particle refinement levels .*/  set Particle refinement levels = 0/" \
     "$top/prm/validation/array3d.prm"
+}
+
+adaptive_levelset() {
+  printf 'subsection Quadrature\n  set Cut cells = level set\nend\n'
+  printf 'subsection Refinement\n  set Particle refinement levels = 2\nend\n'
 }

@@ -32,6 +32,7 @@ top="$(cd "$(dirname "$0")/.." && pwd)"
 exe="${EXE:-$top/build/fdparticle}"
 work="${WORK:-$top/benchmarks/work/smoothness}"
 mkdir -p "$work"
+. "$top/benchmarks/scaling_scenes.sh"
 [ -x "$exe" ] || bash "$top/scripts/build.sh"
 
 variant_settings() { # variant -> prm lines appended at the end (later entries win)
@@ -46,7 +47,7 @@ variant_settings() { # variant -> prm lines appended at the end (later entries w
     *it) variant_settings "${1%it}"
          printf 'subsection Solver\n  set Linear solver = iterative\nend\n' ;;
     long) variant_settings seed ;;  # the seed variant continued to t = 1000 (doc/stability.md)
-    adaptls) printf 'subsection Quadrature\n  set Cut cells = level set\nend\nsubsection Refinement\n  set Particle refinement levels = 2\nend\n' ;;
+    adaptls) adaptive_levelset ;;
     *) echo "unknown variant $1" >&2; exit 2 ;;
   esac
 }
