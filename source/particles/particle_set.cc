@@ -398,6 +398,17 @@ namespace fdparticle
   }
 
   template <int dim>
+  void ParticleSet<dim>::extrapolate_velocities(const TimeStepper &time)
+  {
+    for (Particle<dim> &p : particles)
+      if (p.first_unknown != numbers::invalid_unsigned_int)
+        {
+          p.velocity = time.extrapolate(p.velocity_old, p.velocity_old2);
+          p.omega    = time.extrapolate(p.omega_old, p.omega_old2);
+        }
+  }
+
+  template <int dim>
   void ParticleSet<dim>::set_unknowns(const Eigen::VectorXd &y)
   {
     AssertDimension(y.size(), n_block_unknowns);

@@ -54,13 +54,20 @@ namespace fdparticle
     /// c0, c1, c2 with dy/dt ≈ c0 y^{n+1} + c1 y^n + c2 y^{n−1}, for the next step.
     std::array<double, 3> coefficients() const;
 
+    /// w in the extrapolation y^{n+1} ≈ y^n + w (y^n − y^{n−1}) of the next step's order:
+    /// Δt_n/Δt_{n−1}, 0 for BDF1 (y^n).
+    double extrapolation_weight() const
+    {
+      return order() == 1 ? 0.0 : next_step() / dt_previous;
+    }
+
     /// Extrapolated y^{n+1} of the scheme's order (y^n for BDF1), for frozen geometry.
     template <typename T>
     T extrapolate(const T &y_n, const T &y_nm1) const
     {
-      if (order() == 1)
+      const double w = extrapolation_weight();
+      if (w == 0.0)
         return y_n;
-      const double w = next_step() / dt_previous;
       return y_n + w * (y_n - y_nm1);
     }
 

@@ -304,6 +304,9 @@ namespace fdparticle
 
     /// Put each ball at its (extrapolated) position for the coming step.
     void prepare_step(const TimeStepper &time);
+    /// Start the free particles' (V, ω) of the coming step from their values at the last
+    /// two steps, extrapolated as the position (Newton's initial guess, doc/method.md §5).
+    void extrapolate_velocities(const TimeStepper &time);
     /// Copy the particle block into (V, ω) of the free particles, and back.
     void set_unknowns(const Eigen::VectorXd &y);
     Eigen::VectorXd get_unknowns() const;

@@ -83,6 +83,9 @@ namespace fdparticle
     unsigned int max_iterations = 20;
     bool         line_search    = true;
     bool         reuse_jacobian = true;
+    /// Try the state extrapolated from the last two steps as a start (`Initial guess`);
+    /// read by the caller, which owns the state and compares the two residuals.
+    bool         extrapolate    = false;
 
     /// A residual this many times the larger of the initial residual and the target is
     /// divergence: far above the transient growth of a converging solve, far below

@@ -94,9 +94,23 @@ namespace fdparticle
       h.add(c[1], old_solution, c[2], old_old_solution);
       history_ghost = h;
     }
-    solution = old_solution;
-    state_constraints.distribute(solution);
-    solution_ghost = solution;
+    // Newton's initial guess (doc/method.md §5): u^n, or u^n + w (u^n − u^{n−1}) where its
+    // residual is smaller.
+    const Eigen::VectorXd last_step_velocities = particles.get_unknowns();
+    auto start_from = [&](const bool extrapolated) {
+      solution = old_solution;
+      if (extrapolated)
+        {
+          const double w = time.extrapolation_weight();
+          solution.sadd(1.0 + w, -w, old_old_solution);
+          particles.extrapolate_velocities(time);
+        }
+      else
+        particles.set_unknowns(last_step_velocities);
+      state_constraints.distribute(solution);
+      solution_ghost = solution;
+    };
+    start_from(false);
 
     // The state before the last correction and the correction (dx, dy).
     TrilinosWrappers::MPI::Vector x0, dx;
@@ -145,9 +159,21 @@ namespace fdparticle
       particles.set_unknowns(y0 + theta * dy);
     };
     problem.describe_residual = [&]() { return describe_residual(); };
+    // Two residual evaluations decide, not the Jacobian's assembly: after a start from
+    // rest or in a flow that only jitters as the particles cross cells, u^n often wins.
+    bool extrapolated = false;
+    if (newton.extrapolate && time.extrapolation_weight() != 0.0)
+      {
+        const double last_step_residual = problem.assemble(false);
+        start_from(true);
+        extrapolated = problem.assemble(false) < last_step_residual; // a NaN loses
+        if (!extrapolated)
+          start_from(false);
+      }
 
     const NewtonSolver::Result result = newton.solve(problem);
     statistics.set("initial_residual", result.initial_residual);
+    statistics.set("extrapolated_start", extrapolated ? 1 : 0);
     if (result.converged())
       {
         statistics.set("nonlinear_iterations", result.iterations);
