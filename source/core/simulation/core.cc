@@ -100,8 +100,9 @@ namespace fdparticle
   {
     for (const char *name :
          {"step", "time", "dt", "cells", "dofs", "nonlinear_iterations", "linear_iterations",
-          "inner_iterations", "residual", "initial_residual", "extrapolated_start", "jacobians", "solver_setups",
-          "wall_seconds", "time_step_reductions", "max_velocity", "hydrostatic_deviation"})
+          "inner_iterations", "residual", "initial_residual", "extrapolated_start", "jacobians",
+          "solver_setups", "wall_seconds", "time_step_reductions", "max_velocity",
+          "hydrostatic_deviation"})
       statistics.declare(name);
     statistics.declare_vector("mean_v");
     refinement.declare_columns(statistics);
