@@ -50,7 +50,7 @@ scene() { # name guess directory -> prm on stdout
 # The last row's velocity of each particle: "id vx vy [vz]" lines.
 final_velocities() {
   awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
-           { t = $col["time"]; line[$col["id"]] = $0; time[$col["id"]] = t }
+           { line[$col["id"]] = $0 }
            END { for (k in line) { split(line[k], f, ",")
                    printf "%s %s %s %s\n", k, f[col["vx"]], f[col["vy"]], ("vz" in col) ? f[col["vz"]] : 0 } }' "$1"
 }
