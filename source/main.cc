@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <fdparticle/base/blas_kernels.h>
 #include <fdparticle/base/build_info.h>
 #include <fdparticle/base/parameter_tools.h>
 #include <fdparticle/core/simulation.h>
@@ -18,7 +19,7 @@ namespace
            "  fictitious-domain / distributed-Lagrange-multiplier method.\n"
            "  FILE.prm            the scene (deal.II parameter file); see prm/ for examples\n"
            "  --print-parameters  print every parameter with its default and documentation\n"
-           "  --version           print which build this is (source revision, deal.II)\n"
+           "  --version           print which build this is (source revision, deal.II, BLAS)\n"
            "  --help              print this text\n"
            "  Run in parallel with: mpirun -np N fdparticle FILE.prm\n";
   }
@@ -54,6 +55,7 @@ int main(int argc, char **argv)
 {
   using namespace dealii;
   using namespace fdparticle;
+  BlasKernels::select_for_this_cpu(argv);
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const MPI_Comm                   comm = MPI_COMM_WORLD;
   const bool                       root = Utilities::MPI::this_mpi_process(comm) == 0;
@@ -76,7 +78,8 @@ int main(int argc, char **argv)
           if (arg == "--version")
             {
               if (root)
-                std::cout << build_description() << std::endl;
+                std::cout << build_description() << "\nBLAS: " << BlasKernels::description()
+                          << std::endl;
               return 0;
             }
           if (arg == "--print-parameters")

@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <fdparticle/base/blas_kernels.h>
 #include <fdparticle/base/build_info.h>
 #include <fdparticle/io/output_writer.h>
 #include <fdparticle/particles/sphere.h>
@@ -191,7 +192,8 @@ namespace fdparticle
 
     std::ofstream prm_out(output_directory + "/parameters.prm");
     prm_out << "# Written by " << build_description() << " on "
-            << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n";
+            << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s); BLAS: "
+            << BlasKernels::description() << "\n";
     prm.print_parameters(prm_out, ParameterHandler::PRM);
 
     const std::string particles_file = output_directory + "/particles.csv";

@@ -119,12 +119,17 @@ def check_csv_columns(source, executable, work):
     # The run names its build, as --version does (doc/output.md, parameters.prm).
     version = subprocess.run([executable, "--version"], check=True, capture_output=True,
                              text=True).stdout.strip()
-    check(re.fullmatch(r"fdparticle \S+ \(deal\.II [0-9.]+, (Release|Debug)\)", version) is not None,
-          "--version names the revision, deal.II and the build type: %s" % version)
+    lines = version.split("\n")
+    check(len(lines) == 2 and
+          re.fullmatch(r"fdparticle \S+ \(deal\.II [0-9.]+, (Release|Debug)\)", lines[0]) is not None
+          and re.fullmatch(r"BLAS: (not OpenBLAS|OpenBLAS \S+, \S+ kernels( \(.*\))?)", lines[1])
+          is not None,
+          "--version names the revision, deal.II, the build type and the BLAS: %s" % version)
     with open(os.path.join(out_dir, "parameters.prm")) as f:
         first = f.readline().strip()
-    check(first == "# Written by %s on 1 MPI rank(s)" % version,
-          "parameters.prm names the build that wrote it: %s" % first)
+    check(len(lines) == 2 and
+          first == "# Written by %s on 1 MPI rank(s); %s" % (lines[0], lines[1]),
+          "parameters.prm names the build and the BLAS that wrote it: %s" % first)
     csv_files = sorted(f for f in os.listdir(out_dir) if f.endswith(".csv"))
     check(len(csv_files) >= 3, "the scene wrote its CSV files (%s)" % ", ".join(csv_files))
     for name in csv_files:
