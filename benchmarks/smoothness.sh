@@ -79,8 +79,10 @@ for spec in "$@"; do
 done
 
 # ---- Report --------------------------------------------------------------------------
+# One row per run of the work directory. The rows of runs it does not hold stay as the
+# table had them, so that running one scene in a new work directory keeps the others.
 csv="$top/doc/smoothness${TAG:+_$TAG}.csv"
-echo "scene,variant,t_end,steps,complete,smoothness,wall_seconds,dofs_first,dofs_last,newton_per_step,time_step_reductions" > "$csv"
+rows=$(mktemp)
 for dir in "$work"/*_*/; do
   dir=${dir%/}; name=$(basename "$dir"); scene=${name%%_*}; variant=${name#*_}
   [ -f "$dir/statistics.csv" ] || continue
@@ -95,8 +97,15 @@ for dir in "$work"/*_*/; do
       complete = (t >= end - 1e-9) ? "yes" : "partial";
       if (complete != "yes") s = "";   # the meter writes only at the end of a run
       printf "%s,%s,%g,%d,%s,%s,%.0f,%d,%d,%.2f,%d\n", scene, variant, t, n, complete, s, w, d0, d1, it / n, h
-    }' "$dir/statistics.csv" >> "$csv"
+    }' "$dir/statistics.csv" >> "$rows"
 done
+{
+  echo "scene,variant,t_end,steps,complete,smoothness,wall_seconds,dofs_first,dofs_last,newton_per_step,time_step_reductions"
+  { [ -f "$csv" ] && awk -F, 'NR == FNR { run[$1 "," $2]; next }
+                              FNR > 1 && !(($1 "," $2) in run)' "$rows" "$csv"
+    cat "$rows"; } | LC_ALL=C sort -t, -k1,1 -k2,2
+} > "$rows.table" && mv "$rows.table" "$csv"
+rm -f "$rows"
 column -s, -t "$csv"
 
 plot() { # scene column label
@@ -107,6 +116,14 @@ plot() { # scene column label
     cmd+="${cmd:+, }'$dir/particles.csv' using 1:$col with lines title '$(basename "$dir" | sed 's/^[^_]*_//')'"
   done
   [ -n "$cmd" ] || return 0
+  # A figure shows every run of its scene in the table, or stays as it is.
+  local missing
+  missing=$(awk -F, -v scene="$scene" 'NR > 1 && $1 == scene && $2 != "long" { print $2 }' "$csv" |
+            while read -r v; do [ -f "$work/${scene}_$v/particles.csv" ] || printf '%s ' "$v"; done)
+  if [ -n "$missing" ]; then
+    echo "kept $png: the work directory has no runs $missing"
+    return 0
+  fi
   gnuplot -e "set terminal pngcairo size 900,500; set output '$png'; set datafile separator ',';
               set key autotitle columnhead; set xlabel 't'; set ylabel '$label';
               set title '$scene: $label of the particle'; set grid; plot $cmd" &&
