@@ -9,9 +9,10 @@
 # Each run is one process on RANKS ranks (default 1); compare the ratios within one run of
 # the script (the machine is shared). Writes doc/scaling.csv, doc/scaling_time.png,
 # doc/scaling_memory.png and doc/scaling_iterations.png (FGMRES iterations against mesh
-# size). Solvers: direct, iterative (the defaults: the cut-cell patch and the cheap
-# iterations first) and iterative-inner (no patch, always the inner solve: Cut cell patch
-# layers = -1, Cheap iterations = 0); SOLVERS="iterative" runs only that one.
+# size); each row ends with the date and the commit it was measured at. Solvers: direct,
+# iterative (the defaults: the cut-cell patch and the cheap iterations first) and
+# iterative-inner (no patch, always the inner solve: Cut cell patch layers = -1, Cheap
+# iterations = 0); SOLVERS="iterative" runs only that one.
 # PLOT_ONLY=1 redraws the plots from doc/scaling.csv.
 # Usage: bash benchmarks/scaling.sh     (~10 min on 2 cores with the default SIZES="4 6 8")
 set -uo pipefail
@@ -28,7 +29,8 @@ mkdir -p "$work"
 
 csv="$top/doc/scaling.csv"
 if [ "${PLOT_ONLY:-0}" != 1 ]; then
-echo "scene,n,solver,dofs,linear_iterations,inner_iterations,wall_seconds,peak_mb" > "$csv"
+echo "scene,n,solver,dofs,linear_iterations,inner_iterations,wall_seconds,peak_mb,date,commit" > "$csv"
+commit=$(git -C "$top" rev-parse --short HEAD 2>/dev/null || echo unknown)
 for name in sediment array; do
   for n in $sizes; do
     for solver in $solvers; do
@@ -48,7 +50,7 @@ for name in sediment array; do
         continue
       fi
       read -r wall kb < "$d/time"
-      echo "$name,$n,$solver,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations),$wall,$((kb / 1024))" |
+      echo "$name,$n,$solver,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations),$wall,$((kb / 1024)),$(date -u +%F),$commit" |
         tee -a "$csv"
     done
   done

@@ -4,7 +4,8 @@
 # `Iterative solver statistics` for the parts of the solve. Writes doc/strong_scaling.csv
 # (one row per run: unknowns, FGMRES and inner iterations, the step's wall time, the
 # run's wall time and peak memory of one rank, and from the statistics line the setup of
-# the preconditioner, its patch's part, the iterations and the patch's part of those) and
+# the preconditioner, its patch's part, the iterations and the patch's part of those, the
+# date and the commit) and
 # doc/strong_scaling.png (step time against unknowns, both rank counts). Compare within
 # one run (the machine is shared). PLOT_ONLY=1 redraws the plot from the CSV.
 # Usage: bash benchmarks/strong_scaling.sh   (~8 min on 2 cores, 24 GB, with SIZES="12 16 21 24";
@@ -20,7 +21,8 @@ mkdir -p "$work"
 
 csv="$top/doc/strong_scaling.csv"
 if [ "${PLOT_ONLY:-0}" != 1 ]; then
-echo "n,ranks,dofs,linear_iterations,inner_iterations,step_seconds,wall_seconds,peak_mb,setup_seconds,patch_setup_seconds,iterate_seconds,patch_apply_seconds" > "$csv"
+echo "n,ranks,dofs,linear_iterations,inner_iterations,step_seconds,wall_seconds,peak_mb,setup_seconds,patch_setup_seconds,iterate_seconds,patch_apply_seconds,date,commit" > "$csv"
+commit=$(git -C "$top" rev-parse --short HEAD 2>/dev/null || echo unknown)
 for n in $sizes; do
   for ranks in 1 2; do
     d="$work/sediment-$n-$ranks"
@@ -38,7 +40,7 @@ for n in $sizes; do
     read -r wall kb < "$d/time"
     parts=$(/usr/bin/python3 "$top/scripts/solver-statistics.py" "$d/log" setup_seconds \
       patch_setup_seconds iterate_seconds patch_apply_seconds)
-    echo "$n,$ranks,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations wall_seconds),$wall,$((kb / 1024)),$parts" | tee -a "$csv"
+    echo "$n,$ranks,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" last dofs linear_iterations inner_iterations wall_seconds),$wall,$((kb / 1024)),$parts,$(date -u +%F),$commit" | tee -a "$csv"
   done
 done
 fi
