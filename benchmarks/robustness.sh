@@ -6,7 +6,7 @@
 #   dt 1e-4 ... 10, rho_P / rho_f 0.01 ... 1000, mu 1e-3 ... 1e3, and 1, 8, 64 spheres
 #   (R = 0.2, 0.1, 0.05 on a lattice in the lower cube) on the same mesh.
 # Writes doc/robustness.csv (case, value, unknowns, FGMRES iterations, inner iterations,
-# wall seconds of the run, peak MB); a failed run leaves its row empty.
+# wall seconds of the run, peak MB, date, commit); a failed run leaves its row empty.
 # Usage: bash benchmarks/robustness.sh     (~5 min on 2 cores)
 set -uo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
@@ -36,7 +36,8 @@ scene() { # dt mu particles
 }
 
 csv="$top/doc/robustness.csv"
-echo "case,value,dofs,linear_iterations,inner_iterations,wall_seconds,peak_mb" > "$csv"
+echo "case,value,dofs,linear_iterations,inner_iterations,wall_seconds,peak_mb,date,commit" > "$csv"
+commit=$(git -C "$top" rev-parse --short HEAD 2>/dev/null || echo unknown)
 run() { # case value dt mu particles
   d="$work/$1-$2"
   mkdir -p "$d"
@@ -45,11 +46,11 @@ run() { # case value dt mu particles
   } > "$d/scene.prm"
   if ! /usr/bin/time -f "%e %M" -o "$d/time" "$exe" "$d/scene.prm" > "$d/log" 2>&1; then
     echo "$1 $2 failed (see $d/log)"
-    echo "$1,$2,,,,," >> "$csv"
+    echo "$1,$2,,,,,,$(date -u +%F),$commit" >> "$csv"
     return
   fi
   read -r wall kb < "$d/time"
-  echo "$1,$2,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" 1 dofs linear_iterations inner_iterations),$wall,$((kb / 1024))" | tee -a "$csv"
+  echo "$1,$2,$(bash "$top/scripts/statistics-columns.sh" "$d/out/statistics.csv" 1 dofs linear_iterations inner_iterations),$wall,$((kb / 1024)),$(date -u +%F),$commit" | tee -a "$csv"
 }
 
 one="0, 1, 0 : 0.2"
