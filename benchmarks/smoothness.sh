@@ -7,10 +7,10 @@
 #   levelset  uniform mesh, level-set cut-cell quadrature
 #   adaptive  2 particle refinement levels, 7-point Gauss
 #   adaptls   2 particle refinement levels, level-set quadrature
-#   VARIANTold  the variant with the multiplier settings before commit 42ce90f (Penalty ramp = 0,
-#             Strain penalty = 0.05, Interior pressure penalty = 1; doc/method.md §4)
-#   rampold   adaptls with the ramp of commit 13a8c20 (Penalty ramp = 0.2, Strain penalty = 0.15,
-#             Interior pressure penalty = 1)
+#   VARIANTold  the variant without the penalty ramp (Penalty ramp = 0, Strain penalty = 0.05,
+#             Interior pressure penalty = 1; doc/method.md §4); seedold is the seed's method
+#   rampold   adaptls with the ramp but the interior pressure penalty of the seed
+#             (Interior pressure penalty = 1)
 #   VARIANTit   the variant with the iterative linear solver (Linear solver = iterative); the
 #             others use the scene's solver (direct)
 # Each run checkpoints every 20 steps into a persistent work directory and resumes from
