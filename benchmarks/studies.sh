@@ -94,10 +94,11 @@ for study in "${studies[@]}"; do
       # reference from the Hasimoto / Sangani & Acrivos series (doc/references/README.md,
       # good for c <~ 0.2): K = 1.524646, U = 1/(6 pi mu a K) = 0.2804548. Uniform 8^3, 16^3,
       # 32^3 against following 4^3 + 2, 3, 4 levels, Gauss 7 against level set (12 runs);
-      # Linear solver = auto: the direct solver below 500 k unknowns, the iterative one on
-      # uniform 32^3 (1.8 M unknowns), where MUMPS cannot allocate its factors in 24 GB.
+      # Linear solver = auto from 500 k unknowns: the direct solver below, the iterative one
+      # on uniform 32^3 (1.8 M unknowns), where MUMPS cannot allocate its factors in 24 GB.
       array_study space_3d_small "uniform|1|0,uniform|2|0,uniform|3|0,following|0|2,following|0|3,following|0|4" 0.2804548 \
-        --set "Particles/Particles=0.5, 0.5, 0.5 : 0.124070 : 1 : fixed" --set "Solver/Linear solver=auto"
+        --set "Particles/Particles=0.5, 0.5, 0.5 : 0.124070 : 1 : fixed" --set "Solver/Linear solver=auto" \
+        --set "Solver/Iterative solver from=500000"
       ;;
     dt_2d)
       # Fixed mesh (32 x 64, level-set rules, Stokes), dt = 0.0125 ... 2 to t = 6 (~7 min):
